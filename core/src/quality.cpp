@@ -1,0 +1,97 @@
+// Quality measures of a tetrahedron (paper Section 2: rho = R / L, sigma = V / L^3) and its dihedral angles.
+//
+// Dihedral angle at edge e = (a, b) between the faces (a, b, c) and (a, b, d): with u = c - a, v = d - a, the
+// face normals are n1 = e x u and n2 = e x v, and the identity (e x u) x (e x v) = (e . (u x v)) e gives
+// |n1 x n2| = |e| |det(e, u, v)|. So angle = atan2(|e| |det|, n1 . n2): accurate for both tiny and nearly
+// straight angles (acos loses precision there).
+//
+// Circumcentre relative to p0, with a = p1 - p0, b = p2 - p0, c = p3 - p0:
+//   x = (|a|^2 (b x c) + |b|^2 (c x a) + |c|^2 (a x b)) / (2 a . (b x c)),  R = |x|.
+#include "qualmesh/quality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace qualmesh {
+namespace {
+
+using Vec = Point3;
+
+Vec sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec cross(const Vec& a, const Vec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+// Interior dihedral angle, in degrees, at edge (a, b) between faces (a, b, c) and (a, b, d).
+double dihedral_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  const Vec e = sub(b, a), u = sub(c, a), v = sub(d, a);
+  const Vec n1 = cross(e, u), n2 = cross(e, v);
+  const double sin_part = norm(e) * std::fabs(dot(e, cross(u, v)));
+  const double cos_part = dot(n1, n2);
+  return std::atan2(sin_part, cos_part) * kRadToDeg;
+}
+
+}  // namespace
+
+double tet_signed_volume(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
+  return dot(cross(sub(p1, p0), sub(p2, p0)), sub(p3, p0)) / 6.0;
+}
+
+TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
+  const Point3* p[4] = {&p0, &p1, &p2, &p3};
+  TetQuality q;
+  const Vec a = sub(p1, p0), b = sub(p2, p0), c = sub(p3, p0);
+  const double det = dot(a, cross(b, c));
+  q.volume = det / 6.0;
+
+  // Edges (i, j) with the opposite pair (k, l).
+  static const int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
+                                   {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+  q.shortest_edge = std::numeric_limits<double>::infinity();
+  q.longest_edge = 0;
+  q.min_dihedral_deg = 180;
+  q.max_dihedral_deg = 0;
+  for (const auto& e : kEdges) {
+    const double len = norm(sub(*p[e[1]], *p[e[0]]));
+    q.shortest_edge = std::min(q.shortest_edge, len);
+    q.longest_edge = std::max(q.longest_edge, len);
+    const double angle = dihedral_deg(*p[e[0]], *p[e[1]], *p[e[2]], *p[e[3]]);
+    q.min_dihedral_deg = std::min(q.min_dihedral_deg, angle);
+    q.max_dihedral_deg = std::max(q.max_dihedral_deg, angle);
+  }
+
+  const double inf = std::numeric_limits<double>::infinity();
+  if (det == 0) {
+    q.circumradius = inf;
+  } else {
+    const Vec bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
+    const double sa = dot(a, a), sb = dot(b, b), sc = dot(c, c);
+    const Vec x = {(sa * bc[0] + sb * ca[0] + sc * ab[0]) / (2 * det),
+                   (sa * bc[1] + sb * ca[1] + sc * ab[1]) / (2 * det),
+                   (sa * bc[2] + sb * ca[2] + sc * ab[2]) / (2 * det)};
+    q.circumradius = norm(x);
+  }
+  if (q.shortest_edge > 0) {
+    q.radius_edge = q.circumradius / q.shortest_edge;
+    q.sigma = std::fabs(q.volume) / (q.shortest_edge * q.shortest_edge * q.shortest_edge);
+  } else {
+    q.radius_edge = inf;
+    q.sigma = 0;
+  }
+  return q;
+}
+
+double tet_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
+  return tet_quality(p0, p1, p2, p3).min_dihedral_deg;
+}
+
+double tet_radius_edge(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
+  return tet_quality(p0, p1, p2, p3).radius_edge;
+}
+
+}  // namespace qualmesh
