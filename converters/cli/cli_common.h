@@ -1,0 +1,38 @@
+// Shared pieces of the `qualmesh` command line: how subcommands register, exit codes, input loading.
+//
+// Exit codes (documented in README.md and `qualmesh --help`):
+//   0  success
+//   1  internal error (a bug: please report it with the input)
+//   2  bad input or bad usage: unreadable or malformed file, invalid PLC, unknown option; the message on stderr
+//      names the file, the line and the element ids
+//   3  `check` ran and found defects in the mesh (the report says which)
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "qualmesh/plc.h"
+
+namespace qualmesh::cli {
+
+enum ExitCode : int { kExitOk = 0, kExitInternal = 1, kExitBadInput = 2, kExitCheckFailed = 3 };
+
+// Every subcommand registers itself on the app; its callback runs the command and stores the exit code in
+// `exit_code`. Errors are thrown (InputError -> 2, anything else -> 1) and mapped in main().
+void register_info_command(CLI::App& app, int& exit_code);
+void register_check_command(CLI::App& app, int& exit_code);
+void register_convert_command(CLI::App& app, int& exit_code);
+void register_mesh_command(CLI::App& app, int& exit_code);
+
+// Options shared by the commands that read an input model.
+struct InputOptions {
+  bool keep_triangles = false;  // surface inputs: do not merge coplanar triangles into polygonal facets
+};
+void add_input_options(CLI::App& command, InputOptions& options);
+
+// Reads any input model the CLI accepts (PLC formats; CAD formats when built with the CAD front end) into a Plc.
+// Throws InputError.
+Plc load_input(const std::string& path, const InputOptions& options);
+
+}  // namespace qualmesh::cli
