@@ -1,0 +1,93 @@
+// Tests of the tetrahedron quality measures (quality.h) on shapes whose figures are known in closed form.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "qualmesh/quality.h"
+
+namespace qualmesh {
+namespace {
+
+const double kPi = 3.14159265358979323846;
+
+TEST(TetQuality, RegularTetrahedron) {
+  // Vertices of a cube alternately: edge 2 sqrt(2), circumradius sqrt(3).
+  const Point3 a{1, 1, 1}, b{1, -1, -1}, c{-1, 1, -1}, d{-1, -1, 1};
+  TetQuality q = tet_quality(a, b, c, d);
+  if (q.volume < 0) q = tet_quality(a, c, b, d);
+  EXPECT_NEAR(q.volume, 8.0 / 3.0, 1e-12);
+  const double regular_dihedral_deg = std::acos(1.0 / 3.0) * 180.0 / kPi;
+  EXPECT_NEAR(regular_dihedral_deg, 70.5288, 1e-4);
+  EXPECT_NEAR(q.min_dihedral_deg, regular_dihedral_deg, 1e-10);
+  EXPECT_NEAR(q.max_dihedral_deg, regular_dihedral_deg, 1e-10);
+  EXPECT_NEAR(q.radius_edge, std::sqrt(6.0) / 4.0, 1e-12);
+  EXPECT_NEAR(q.sigma, 1.0 / (6.0 * std::sqrt(2.0)), 1e-12);
+  EXPECT_NEAR(q.shortest_edge, 2 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(q.longest_edge, 2 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(q.circumradius, std::sqrt(3.0), 1e-12);
+  EXPECT_NEAR(tet_min_dihedral_deg(a, b, c, d), regular_dihedral_deg, 1e-10);
+  EXPECT_NEAR(tet_radius_edge(a, b, c, d), std::sqrt(6.0) / 4.0, 1e-12);
+}
+
+TEST(TetQuality, RightCornerTetrahedron) {
+  const Point3 o{0, 0, 0}, x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
+  const TetQuality q = tet_quality(o, x, y, z);
+  EXPECT_NEAR(q.volume, 1.0 / 6.0, 1e-15);
+  EXPECT_NEAR(q.max_dihedral_deg, 90.0, 1e-12);
+  // The angle between the slanted face x+y+z=1 and a coordinate plane: acos(1/sqrt(3)).
+  EXPECT_NEAR(q.min_dihedral_deg, std::acos(1.0 / std::sqrt(3.0)) * 180.0 / kPi, 1e-12);
+  EXPECT_NEAR(q.circumradius, std::sqrt(3.0) / 2.0, 1e-15);
+  EXPECT_NEAR(q.radius_edge, std::sqrt(3.0) / 2.0, 1e-15);
+  EXPECT_NEAR(q.sigma, 1.0 / 6.0, 1e-15);
+  EXPECT_NEAR(q.shortest_edge, 1.0, 1e-15);
+  EXPECT_NEAR(q.longest_edge, std::sqrt(2.0), 1e-15);
+}
+
+TEST(TetQuality, SliverOnASquare) {
+  // Four corners of the unit square, one lifted by eps: a sliver. Good radius-edge ratio, tiny sigma.
+  const double eps = 1e-6;
+  const Point3 a{0, 0, 0}, b{1, 0, 0}, c{1, 1, eps}, d{0, 1, 0};
+  TetQuality q = tet_quality(a, b, d, c);
+  EXPECT_NEAR(std::fabs(q.volume), eps / 6.0, 1e-15);
+  EXPECT_NEAR(q.sigma, eps / 6.0, 1e-15);
+  EXPECT_NEAR(q.radius_edge, std::sqrt(2.0) / 2.0, 1e-6);
+  EXPECT_LT(q.min_dihedral_deg, 1e-3);
+  EXPECT_GT(q.max_dihedral_deg, 179.999);
+}
+
+TEST(TetQuality, FlatTetrahedronHasInfiniteRadiusEdge) {
+  const Point3 a{0, 0, 0}, b{1, 0, 0}, c{1, 1, 0}, d{0, 1, 0};
+  const TetQuality q = tet_quality(a, b, c, d);
+  EXPECT_EQ(q.volume, 0.0);
+  EXPECT_TRUE(std::isinf(q.radius_edge));
+  EXPECT_TRUE(std::isinf(q.circumradius));
+  EXPECT_EQ(q.sigma, 0.0);
+  EXPECT_EQ(q.min_dihedral_deg, 0.0);
+}
+
+TEST(TetQuality, OrientationSign) {
+  const Point3 o{0, 0, 0}, x{2, 0, 0}, y{0, 3, 0}, z{0, 0, 4};
+  EXPECT_NEAR(tet_quality(o, x, y, z).volume, 4.0, 1e-14);
+  EXPECT_NEAR(tet_quality(o, y, x, z).volume, -4.0, 1e-14);
+  EXPECT_NEAR(tet_signed_volume(x, o, y, z), -4.0, 1e-14);
+  // Every measure but the volume is independent of the order.
+  const TetQuality p = tet_quality(o, x, y, z), n = tet_quality(o, y, x, z);
+  EXPECT_DOUBLE_EQ(p.min_dihedral_deg, n.min_dihedral_deg);
+  EXPECT_DOUBLE_EQ(p.radius_edge, n.radius_edge);
+  EXPECT_DOUBLE_EQ(p.sigma, n.sigma);
+}
+
+TEST(TetQuality, ScaleInvariance) {
+  const Point3 a{0.1, 0.2, 0.3}, b{1.4, 0.1, 0.2}, c{0.5, 1.7, 0.1}, d{0.3, 0.4, 1.9};
+  const double s = 1e3;
+  const Point3 as{a[0] * s, a[1] * s, a[2] * s}, bs{b[0] * s, b[1] * s, b[2] * s},
+      cs{c[0] * s, c[1] * s, c[2] * s}, ds{d[0] * s, d[1] * s, d[2] * s};
+  const TetQuality q = tet_quality(a, b, c, d), qs = tet_quality(as, bs, cs, ds);
+  EXPECT_NEAR(q.radius_edge, qs.radius_edge, 1e-12);
+  EXPECT_NEAR(q.sigma, qs.sigma, 1e-12);
+  EXPECT_NEAR(q.min_dihedral_deg, qs.min_dihedral_deg, 1e-10);
+  EXPECT_NEAR(qs.volume, q.volume * s * s * s, 1e-6 * std::fabs(qs.volume));
+}
+
+}  // namespace
+}  // namespace qualmesh
