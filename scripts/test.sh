@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, and runs every test: the unit and property tests under AddressSanitizer and
+# UndefinedBehaviorSanitizer (build-asan/), then the whole suite in the Release build (build/). CTest's closing
+# summary of the Release run is the last thing printed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh --with-tests
+jobs=$(nproc 2>/dev/null || echo 2)
+
+echo "== sanitizer build (ASan + UBSan) =="
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DQUALMESH_SANITIZE=ON >/dev/null
+cmake --build build-asan -j"$jobs"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-asan -L cpp -LE slow --output-on-failure -j"$jobs"
+
+echo "== release build, full suite =="
+bash scripts/build.sh
+ctest --test-dir build --output-on-failure -j"$jobs"
