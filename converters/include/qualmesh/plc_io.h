@@ -1,0 +1,44 @@
+// Readers and writers of piecewise linear complexes (PLCs): TetGen .poly/.smesh/.node, OFF, STL (ASCII and binary),
+// Wavefront OBJ and Medit .mesh surfaces in; .poly, .smesh and .off out.
+//
+// Why here: every front end (CLI, Python, FreeCAD) loads its input through read_plc(), so that a malformed file gets
+// the same typed error everywhere: InputError with the file, the 1-based line (text formats) and a message naming
+// the offending element (numbered as in the file). Readers check syntax and references only; geometric validity
+// (duplicates, closedness, intersections, planarity) is judged by validate_plc().
+#pragma once
+
+#include <string>
+
+#include "qualmesh/plc.h"
+
+namespace qualmesh {
+
+struct ReadOptions {
+  // Surface readers (OFF, STL, OBJ, Medit): merge adjacent, exactly coplanar facets into polygonal facets
+  // (merge_coplanar_facets() of facet_merge.h), so that an STL box becomes six squares. TetGen files are never
+  // merged.
+  bool merge_coplanar = true;
+};
+
+// Reads a PLC, choosing the reader by extension (case-insensitive):
+//  .poly, .smesh  TetGen PLC (0- or 1-based, decided by the first node index; a node count of 0 reads the sibling
+//                 .node file); facets with several polygons, facet holes, volume holes and regions are kept;
+//  .node          TetGen points only (no facets);
+//  .off .stl .obj .mesh  surfaces (STL ASCII or binary, told apart by the file size; Medit: Triangles and
+//                 Quadrilaterals, Tetrahedra ignored). Exactly duplicated vertices are merged (first occurrence
+//                 order) and vertices used by no facet are dropped.
+// Plc::name is set to the file name. Throws InputError (Io, Parse, IndexOutOfRange, NonFinite, Empty, Unsupported).
+Plc read_plc(const std::string& path, const ReadOptions& options = {});
+
+// True when the extension of `path` is one that read_plc() accepts.
+bool is_plc_path(const std::string& path);
+
+// Writes `plc` as .poly, .smesh or .off (chosen by extension, case-insensitive) through a temporary file renamed
+// into place, so a failure leaves no partial file. Coordinates are written with round-trip precision.
+// What a format cannot hold throws InputError(Unsupported) naming the element, and nothing is written:
+//  .smesh: a facet with more than one polygon or with hole points;
+//  .off:   the same, a facet polygon of fewer than 3 vertices, volume holes and region seeds;
+//  all:    an explicit segment that is not an edge of some facet polygon.
+void write_plc(const Plc& plc, const std::string& path);
+
+}  // namespace qualmesh
