@@ -1,0 +1,47 @@
+// Writers and readers of tetrahedral meshes: QualMesh's output formats (VTU, TetGen, Gmsh 4.1, Medit, Abaqus /
+// CalculiX) and the readers the checker uses to judge foreign meshes (TetGen, Gmsh 4.1 and 2.2, Medit, VTU).
+//
+// Orientation: QualMesh writes tetrahedra positively oriented, (p1-p0) x (p2-p0) . (p3-p0) > 0, which is what
+// VTK, Gmsh, Medit and CalculiX C3D4 expect (C3D4's node order is SMESH's [1,0,2,3], SMESH's being negative).
+// TetGen 1.5.0 (`tetgen -pq2`) writes its tetrahedra positively oriented too. Readers never reorder the nodes of a
+// tetrahedron: a foreign mesh keeps the orientation of its file, so the checker sees it as it is.
+// Indices are 0-based in TetMesh; every format's 1-based numbering (or TetGen's 0- or 1-based) is converted here.
+// Every writer goes through write_file_atomically: a failure never leaves a half-written file nor clobbers one.
+#pragma once
+
+#include <string>
+
+#include "qualmesh/tet_mesh.h"
+
+namespace qualmesh {
+
+enum class MeshFormat {
+  Vtu,     // VTK XML unstructured grid, ASCII; cell data "region", "min_dihedral_deg", "radius_edge"
+  TetGen,  // BASE.node, BASE.ele (region as the tetrahedron attribute), BASE.face (facet marker)
+  Gmsh41,  // Gmsh .msh 4.1 ASCII; one volume physical "Region<attr>" per region, one surface physical "Face<m>"
+  Medit,   // Medit .mesh; region = tetrahedron reference, face marker = triangle reference
+  Abaqus,  // Abaqus / CalculiX .inp; C3D4, one ELSET "Region<attr>" per region, *SURFACE "Face<m>" per marker
+};
+
+// The format of a mesh file by its extension: .vtu, .node / .ele (TetGen), .msh, .mesh, .inp.
+// Throws InputError(ErrorCode::Unsupported) for any other extension.
+MeshFormat mesh_format_from_path(const std::string& path);
+
+// True when the extension names a mesh format (one that mesh_format_from_path accepts).
+bool is_mesh_path(const std::string& path);
+
+// Writes `mesh` to `path` in the format given by its extension. For TetGen, `path` may end in .node or .ele and
+// BASE.node, BASE.ele and BASE.face are written. The mesh is not modified. Throws InputError(Io) on failure.
+void write_tet_mesh(const TetMesh& mesh, const std::string& path);
+void write_tet_mesh(const TetMesh& mesh, const std::string& path, MeshFormat format);
+
+// Reads a tetrahedral mesh: TetGen (.ele or .node path: reads BASE.node + BASE.ele, and BASE.face when present),
+// Gmsh .msh 4.1 and 2.2 ASCII, Medit .mesh (Vertices + Tetrahedra + Triangles), .vtu as QualMesh writes it
+// (ASCII). Second-order elements are read as their four (three) corner nodes. Regions: TetGen's first tetrahedron
+// attribute, Gmsh's volume physical tag (or the n of a physical named "Region<n>"; else the entity tag), Medit's
+// reference, VTU's "region" array. Face markers likewise (TetGen boundary marker, Gmsh surface physical or
+// "Face<n>", Medit reference). face_facet is -1 for every face read. .inp files are not read.
+// Throws InputError (Io, Parse, Unsupported, IndexOutOfRange, NonFinite) with the file and line.
+TetMesh read_tet_mesh(const std::string& path);
+
+}  // namespace qualmesh

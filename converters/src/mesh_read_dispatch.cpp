@@ -1,0 +1,70 @@
+// read_tet_mesh: picks the reader by extension, then checks what every reader must guarantee (indices in range,
+// finite coordinates, one region per tetrahedron).
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "mesh_io_internal.h"
+#include "qualmesh/mesh_io.h"
+
+namespace qualmesh {
+
+TetMesh read_tet_mesh(const std::string& path) {
+  TetMesh mesh;
+  switch (mesh_format_from_path(path)) {
+    case MeshFormat::TetGen: mesh = io::read_tetgen(io::strip_extension(path)); break;
+    case MeshFormat::Gmsh41: mesh = io::read_gmsh(path); break;
+    case MeshFormat::Medit: mesh = io::read_medit(path); break;
+    case MeshFormat::Vtu: mesh = io::read_vtu(path); break;
+    case MeshFormat::Abaqus:
+      throw InputError(ErrorCode::Unsupported, "reading Abaqus .inp meshes is not supported", path);
+  }
+  io::check_mesh_indices(mesh, path);
+  return mesh;
+}
+
+namespace io {
+
+std::string read_whole_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(ErrorCode::Io, "cannot open file", path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(ErrorCode::Io, "read failed", path);
+  return text.str();
+}
+
+void check_mesh_indices(const TetMesh& mesh, const std::string& file) {
+  const Index n = static_cast<Index>(mesh.points.size());
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    for (double c : mesh.points[i]) {
+      if (!std::isfinite(c)) {
+        ElementIds ids;
+        ids.vertices.push_back(static_cast<Index>(i));
+        throw InputError(ErrorCode::NonFinite, "vertex " + std::to_string(i) + " has a non-finite coordinate", file,
+                         0, ids);
+      }
+    }
+  }
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    for (Index v : mesh.tets[t]) {
+      if (v >= n) {
+        ElementIds ids;
+        ids.elements.push_back(static_cast<Index>(t));
+        throw InputError(ErrorCode::IndexOutOfRange,
+                         "tetrahedron " + std::to_string(t) + " refers to a missing vertex", file, 0, ids);
+      }
+    }
+  }
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (Index v : mesh.faces[f]) {
+      if (v >= n) {
+        throw InputError(ErrorCode::IndexOutOfRange, "face " + std::to_string(f) + " refers to a missing vertex",
+                         file);
+      }
+    }
+  }
+}
+
+}  // namespace io
+}  // namespace qualmesh

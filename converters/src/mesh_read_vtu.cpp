@@ -1,0 +1,167 @@
+// VTU reader for the files QualMesh writes: VTK XML UnstructuredGrid, one Piece, ASCII DataArrays ("binary" and
+// "appended" data are not read). Keeps tetrahedra (VTK_TETRA = 10, node order as in the file) and the "region"
+// cell array (0 when absent); triangles (VTK_TRIANGLE = 5) become faces with marker 0; other cells are refused.
+// Not a general XML parser: it finds the <Points>, <Cells> and <CellData> blocks and their DataArrays.
+#include <algorithm>
+#include <cstdlib>
+
+#include "mesh_io_internal.h"
+
+namespace qualmesh::io {
+namespace {
+
+struct DataArray {
+  std::string parent;  // "Points", "Cells", "CellData", "PointData", ...
+  std::string name;
+  std::vector<double> values;
+  long line = 0;
+};
+
+class VtuReader {
+ public:
+  explicit VtuReader(const std::string& path) : path_(path), text_(read_whole_file(path)) {}
+
+  TetMesh read() {
+    if (text_.find("<VTKFile") == std::string::npos || text_.find("UnstructuredGrid") == std::string::npos) {
+      fail(ErrorCode::Parse, "not a VTK XML UnstructuredGrid file", 1L);
+    }
+    if (text_.find("<AppendedData") != std::string::npos) {
+      fail(ErrorCode::Unsupported, "appended (binary) VTU data is not read; write ASCII", 1L);
+    }
+    const std::size_t piece = text_.find("<Piece");
+    if (piece == std::string::npos) fail(ErrorCode::Parse, "no <Piece>", 1L);
+    if (text_.find("<Piece", piece + 1) != std::string::npos) fail(ErrorCode::Unsupported, "several pieces", line_at(piece));
+    const std::size_t num_points = count_attribute(piece, "NumberOfPoints");
+    const std::size_t num_cells = count_attribute(piece, "NumberOfCells");
+
+    std::vector<DataArray> arrays = read_arrays();
+    const DataArray* points = find(arrays, "Points", "");
+    const DataArray* connectivity = find(arrays, "Cells", "connectivity");
+    const DataArray* offsets = find(arrays, "Cells", "offsets");
+    const DataArray* types = find(arrays, "Cells", "types");
+    const DataArray* region = find(arrays, "CellData", "region");
+    if (!points || !connectivity || !offsets || !types) fail(ErrorCode::Parse, "missing Points or Cells arrays", line_at(piece));
+    if (points->values.size() != 3 * num_points) fail(ErrorCode::Parse, "wrong number of coordinates", points->line);
+    if (offsets->values.size() != num_cells || types->values.size() != num_cells) {
+      fail(ErrorCode::Parse, "offsets/types do not match NumberOfCells", offsets->line);
+    }
+    if (region && region->values.size() != num_cells) fail(ErrorCode::Parse, "wrong size of 'region'", region->line);
+
+    TetMesh mesh;
+    mesh.points.resize(num_points);
+    for (std::size_t i = 0; i < num_points; ++i) {
+      for (int c = 0; c < 3; ++c) mesh.points[i][c] = points->values[3 * i + c];
+    }
+    std::size_t begin = 0;
+    for (std::size_t cell = 0; cell < num_cells; ++cell) {
+      const std::size_t end = static_cast<std::size_t>(offsets->values[cell]);
+      if (end < begin || end > connectivity->values.size()) fail(ErrorCode::Parse, "bad offsets", offsets->line);
+      std::vector<Index> nodes;
+      for (std::size_t k = begin; k < end; ++k) {
+        const double v = connectivity->values[k];
+        if (v < 0 || v >= static_cast<double>(num_points)) {
+          fail(ErrorCode::IndexOutOfRange, "cell " + std::to_string(cell) + " refers to a missing point",
+               connectivity->line);
+        }
+        nodes.push_back(static_cast<Index>(v));
+      }
+      begin = end;
+      const int type = static_cast<int>(types->values[cell]);
+      if (type == 10 && nodes.size() == 4) {
+        mesh.tets.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
+        mesh.tet_region.push_back(region ? static_cast<int>(region->values[cell]) : 0);
+      } else if (type == 5 && nodes.size() == 3) {
+        mesh.faces.push_back({nodes[0], nodes[1], nodes[2]});
+        mesh.face_facet.push_back(-1);
+        mesh.face_marker.push_back(0);
+      } else {
+        fail(ErrorCode::Unsupported, "cell " + std::to_string(cell) + " of VTK type " + std::to_string(type) +
+                                         " (only tetrahedra and triangles are read)", types->line);
+      }
+    }
+    return mesh;
+  }
+
+ private:
+  // 1-based line of byte `pos` (or a line number already).
+  long line_at(std::size_t pos) const {
+    return 1 + static_cast<long>(std::count(text_.begin(), text_.begin() + std::min(pos, text_.size()), '\n'));
+  }
+  [[noreturn]] void fail(ErrorCode code, const std::string& message, long line) const {
+    throw InputError(code, message, path_, line);
+  }
+
+  // Value of attribute `name` in the tag starting at `tag`.
+  std::string attribute(std::size_t tag, const std::string& name) const {
+    const std::size_t close = text_.find('>', tag);
+    const std::string key = " " + name + "=\"";
+    const std::size_t at = text_.find(key, tag);
+    if (at == std::string::npos || at > close) return {};
+    const std::size_t start = at + key.size();
+    return text_.substr(start, text_.find('"', start) - start);
+  }
+
+  std::size_t count_attribute(std::size_t tag, const std::string& name) const {
+    const std::string value = attribute(tag, name);
+    char* end = nullptr;
+    const long long count = std::strtoll(value.c_str(), &end, 10);
+    if (value.empty() || *end != '\0' || count < 0) fail(ErrorCode::Parse, "bad or missing " + name, line_at(tag));
+    return static_cast<std::size_t>(count);
+  }
+
+  std::vector<DataArray> read_arrays() const {
+    static const char* kParents[] = {"Points", "Cells", "CellData", "PointData", "FieldData"};
+    std::vector<DataArray> arrays;
+    for (std::size_t at = text_.find("<DataArray"); at != std::string::npos; at = text_.find("<DataArray", at + 1)) {
+      DataArray array;
+      array.line = line_at(at);
+      std::size_t best = 0;
+      for (const char* parent : kParents) {
+        const std::size_t open = text_.rfind(std::string("<") + parent, at);
+        if (open != std::string::npos && open >= best) {
+          const std::size_t closed = text_.rfind(std::string("</") + parent, at);
+          if (closed == std::string::npos || closed < open) {
+            best = open;
+            array.parent = parent;
+          }
+        }
+      }
+      array.name = attribute(at, "Name");
+      const std::string format = attribute(at, "format");
+      if (format != "ascii") fail(ErrorCode::Unsupported, "DataArray format '" + format + "' (only ascii)", array.line);
+      const std::size_t start = text_.find('>', at) + 1;
+      const std::size_t end = text_.find("</DataArray>", start);
+      if (end == std::string::npos) fail(ErrorCode::Parse, "unterminated DataArray", array.line);
+      const std::string body = text_.substr(start, end - start);
+      const char* p = body.c_str();
+      while (true) {
+        char* next = nullptr;
+        const double value = std::strtod(p, &next);
+        if (next == p) break;
+        array.values.push_back(value);
+        p = next;
+      }
+      while (*p == ' ' || *p == '\n' || *p == '\t' || *p == '\r') ++p;
+      if (*p != '\0') fail(ErrorCode::Parse, "garbage in DataArray '" + array.name + "'", array.line);
+      arrays.push_back(std::move(array));
+    }
+    return arrays;
+  }
+
+  static const DataArray* find(const std::vector<DataArray>& arrays, const std::string& parent,
+                               const std::string& name) {
+    for (const DataArray& a : arrays) {
+      if (a.parent == parent && (name.empty() || a.name == name)) return &a;
+    }
+    return nullptr;
+  }
+
+  std::string path_;
+  std::string text_;
+};
+
+}  // namespace
+
+TetMesh read_vtu(const std::string& path) { return VtuReader(path).read(); }
+
+}  // namespace qualmesh::io
