@@ -36,7 +36,17 @@ double dihedral_deg(const Point3& a, const Point3& b, const Point3& c, const Poi
   return std::atan2(sin_part, cos_part) * kRadToDeg;
 }
 
+// Edges (i, j) with the opposite pair (k, l), in the order of tet_dihedral_angles_deg.
+const int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+
 }  // namespace
+
+std::array<double, 6> tet_dihedral_angles_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
+  const Point3* p[4] = {&p0, &p1, &p2, &p3};
+  std::array<double, 6> angles;
+  for (int i = 0; i < 6; ++i) angles[i] = dihedral_deg(*p[kEdges[i][0]], *p[kEdges[i][1]], *p[kEdges[i][2]], *p[kEdges[i][3]]);
+  return angles;
+}
 
 double tet_signed_volume(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
   return dot(cross(sub(p1, p0), sub(p2, p0)), sub(p3, p0)) / 6.0;
@@ -49,9 +59,6 @@ TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, con
   const double det = dot(a, cross(b, c));
   q.volume = det / 6.0;
 
-  // Edges (i, j) with the opposite pair (k, l).
-  static const int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
-                                   {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
   q.shortest_edge = std::numeric_limits<double>::infinity();
   q.longest_edge = 0;
   q.min_dihedral_deg = 180;

@@ -6,12 +6,17 @@
 // mutated, nothing printed.
 #pragma once
 
+#include <array>
+
 #include "qualmesh/types.h"
 
 namespace qualmesh {
 
 struct TetQuality {
-  // Signed volume (p1-p0) x (p2-p0) . (p3-p0) / 6; positive for a positively oriented tetrahedron.
+  // The six interior dihedral angles in degrees, at edges (0,1), (0,2), (0,3), (1,2), (1,3), (2,3).
+std::array<double, 6> tet_dihedral_angles_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3);
+
+// Signed volume (p1-p0) x (p2-p0) . (p3-p0) / 6; positive for a positively oriented tetrahedron.
   double volume = 0;
   // Smallest and largest of the six interior dihedral angles, in degrees, in [0, 180].
   double min_dihedral_deg = 0;
@@ -34,6 +39,9 @@ double tet_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point3& p2
 
 // Radius-edge ratio rho = circumradius / shortest edge; +infinity for a flat tetrahedron.
 double tet_radius_edge(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3);
+
+// The six interior dihedral angles in degrees, at edges (0,1), (0,2), (0,3), (1,2), (1,3), (2,3).
+std::array<double, 6> tet_dihedral_angles_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3);
 
 // Signed volume (p1-p0) x (p2-p0) . (p3-p0) / 6.
 double tet_signed_volume(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3);

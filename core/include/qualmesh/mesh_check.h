@@ -1,0 +1,103 @@
+// An independent validator of tetrahedral meshes (DESIGN.md "How we know it works", STYLE.md principle 6): it
+// re-checks a mesh from scratch, ours or a peer's (TetGen, Gmsh, Medit), and never trusts what the mesher knows.
+// It checks orientation, face-to-face matching, and, given the input PLC, conformity: the volume the input encloses
+// equals the mesh volume, every boundary face lies on an input facet, and the faces on each facet cover exactly
+// that facet (the paper's Theorem 7.2). It also gathers the quality figures of the paper (rho = R / L, sigma =
+// V / L^3, Section 2) and the dihedral angles FEM users read. Pure: nothing is printed, the mesh is not modified.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "qualmesh/plc.h"
+#include "qualmesh/tet_mesh.h"
+
+namespace qualmesh {
+
+struct CheckOptions {
+  // Distance tolerance for "a vertex lies on a facet's plane", relative to the bounding-box diagonal of the
+  // reference PLC (of the mesh when there is none).
+  double tolerance = 1e-9;
+  // Largest accepted relative error of the mesh volume against the reference volume, and of each facet's
+  // covered area against its area. Floating-point sums over millions of tetrahedra stay far below these.
+  double relative_volume_tolerance = 1e-8;
+  double relative_area_tolerance = 1e-8;
+  // At most this many problem lines are kept (the counts are always complete).
+  std::size_t max_problems = 100;
+};
+
+// How much of one input facet the mesh's boundary faces cover.
+struct FacetCoverage {
+  Index facet = 0;            // 0-based index into Plc::facets
+  int marker = 0;             // Facet::marker
+  double area = 0;            // area of the facet (polygons by the even-odd rule, less its holes)
+  double covered_area = 0;    // total area of the mesh boundary faces found on it
+  double relative_error = 0;  // |covered_area - area| / area
+};
+
+struct CheckReport {
+  // Counts.
+  std::size_t num_points = 0;
+  std::size_t num_tets = 0;
+  std::size_t num_unused_points = 0;       // points no tetrahedron uses (not a defect by itself)
+  std::size_t num_faces = 0;               // distinct triangular faces of the tetrahedra
+  std::size_t num_boundary_faces = 0;      // faces of one tetrahedron plus faces between different regions
+  std::size_t num_hull_faces = 0;          // faces of exactly one tetrahedron
+  std::size_t num_region_interface_faces = 0;  // faces of two tetrahedra of different regions
+  std::size_t num_regions = 0;             // distinct region attributes
+
+  // Structure and orientation.
+  std::size_t num_nonpositive_tets = 0;    // signed volume <= 0 (inverted or flat)
+  std::size_t num_duplicate_tets = 0;      // tetrahedra with the same vertex set as an earlier one
+  std::size_t num_overshared_faces = 0;    // faces shared by more than two tetrahedra
+  std::size_t num_folded_faces = 0;        // faces of two tetrahedra lying on the same side of it (overlap)
+  std::size_t num_bad_indices = 0;         // tetrahedra with a missing or repeated vertex
+  double mesh_volume = 0;                  // sum of signed volumes, model units cubed
+
+  // Conformity to the reference PLC (has_reference false: all below are unset).
+  bool has_reference = false;
+  // The volume the input encloses, or NaN when it cannot be found (see reference_volume_method).
+  double reference_volume = 0;
+  // How it was found: "closed-shells" (each shell oriented consistently, signed by nesting depth),
+  // or "unsupported: REASON" (open or non-manifold input, volume hole seeds): the volume check is then skipped.
+  std::string reference_volume_method;
+  double volume_relative_error = 0;        // |mesh_volume - reference_volume| / reference_volume; NaN when unknown
+  std::size_t num_faces_off_input = 0;     // boundary faces on no input facet
+  std::size_t num_faces_given = 0;         // TetMesh::faces listed by the mesh (not used for the checks)
+  double facet_area = 0;                   // total area of the input facets
+  double covered_area = 0;                 // total area of boundary faces found on a facet
+  double max_facet_area_relative_error = 0;
+  std::size_t num_miscovered_facets = 0;   // facets whose relative area error exceeds the tolerance
+  std::vector<FacetCoverage> facets;       // one per input facet
+
+  // Quality figures over all tetrahedra.
+  double min_dihedral_deg = 0;
+  double max_dihedral_deg = 0;
+  double dihedral_histogram_bin_deg = 5;   // width of a histogram bin
+  std::vector<std::size_t> dihedral_histogram;  // all 6 dihedral angles of every tetrahedron, bins over [0, 180]
+  std::vector<std::size_t> min_dihedral_histogram;  // the smallest dihedral angle of each tetrahedron
+  double max_radius_edge = 0;              // largest circumradius / shortest edge (the paper's rho)
+  double min_sigma = 0;                    // smallest volume / shortest edge^3 (the paper's sigma)
+  double min_volume = 0;                   // smallest signed tetrahedron volume
+  std::size_t num_tets_min_dihedral_below_5 = 0;
+  std::size_t num_tets_min_dihedral_below_10 = 0;
+  std::size_t num_tets_min_dihedral_below_15 = 0;
+
+  // Verdict.
+  std::size_t num_problems = 0;            // all problems found (problems keeps the first max_problems)
+  std::vector<std::string> problems;       // "tet 12: non-positive volume -1e-3", "face (3, 8, 9): ..."
+  bool ok = false;                         // no problem found
+};
+
+// Checks `mesh`; with `reference` (may be null) also its conformity to that input.
+CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOptions& options = {});
+
+// Human-readable summary, several lines.
+std::string to_text(const CheckReport& report);
+
+// The report as one JSON object with stable keys (the field names above); numbers printed with %.17g
+// (NaN and infinity as null).
+std::string to_json(const CheckReport& report);
+
+}  // namespace qualmesh

@@ -1,0 +1,49 @@
+// Private to the mesh checker (mesh_check*.cpp): the geometry of one input facet as the checker needs it (plane,
+// 2D projection, loop nesting, area, point-in-facet test), and the reference-volume computation.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "qualmesh/plc.h"
+
+namespace qualmesh::check {
+
+using Point2 = std::array<double, 2>;
+
+// One facet of the reference PLC, projected to 2D by dropping the coordinate axis closest to its normal.
+struct FacetGeometry {
+  Point3 normal{0, 0, 0};  // unit normal (Newell's method on the loop of largest area)
+  double offset = 0;       // normal . x for every x on the plane
+  int drop_axis = 2;       // the dropped axis; 2D coordinates are (x[(k+1)%3], x[(k+2)%3])
+  std::vector<std::vector<Index>> loops;   // polygon loops of >= 3 vertices
+  std::vector<std::vector<Point2>> loops_2d;
+  std::vector<int> depth;                  // how many other loops enclose each loop
+  std::vector<int> winding;                // +1 when the loop turns positively around `normal`, else -1
+  std::vector<std::vector<char>> hole_enclosure;  // per facet hole point: which loops enclose it
+  double area = 0;                         // filled area: even-odd rule, less the hole-point components
+  BoundingBox box;
+  bool degenerate = false;                 // no loop with area: cannot hold a face
+
+  Point2 project(const Point3& p) const { return {p[(drop_axis + 1) % 3], p[(drop_axis + 2) % 3]}; }
+  // True when the projection of p lies inside the facet's filled region (p assumed on the plane).
+  bool contains(const Point3& p) const;
+};
+
+FacetGeometry make_facet_geometry(const Plc& plc, const Facet& facet);
+
+struct ReferenceVolume {
+  double volume = 0;   // NaN when unsupported
+  std::string method;  // "closed-shells" or "unsupported: REASON"
+};
+
+// The volume enclosed by the PLC's facets: they must form closed, orientable shells (every polygon edge used by
+// exactly two facets). Each shell is oriented consistently by breadth-first search over shared edges, its volume
+// found by the divergence theorem (sum of offset * area / 3), made positive, and signed by its nesting depth among
+// the other shells (winding number of one of its vertices): even depth adds, odd depth (a cavity) subtracts.
+// Limits: internal facets (non-manifold edges), T-junctions between facets, open inputs and volume hole seeds are
+// reported as unsupported.
+ReferenceVolume compute_reference_volume(const Plc& plc, const std::vector<FacetGeometry>& facets);
+
+}  // namespace qualmesh::check
