@@ -1,0 +1,359 @@
+// B-rep to PLC (third stage of the CAD front end): tessellates the curved faces with OpenCASCADE's BRepMesh and
+// writes the piecewise linear complex the mesher consumes.
+//
+// Conformity between faces is by construction, not by tolerance: every CAD edge is discretised once (BRepMesh
+// shares an edge's polygon between the faces that use it) and its vertex chain is given PLC vertex ids once; every
+// face maps its boundary nodes onto those ids. So two facets that share a CAD edge share exactly the same vertex
+// chain, and the seam of a periodic face closes on itself. A planar face becomes one facet whose polygons are its
+// wires (exact up to the points where a neighbouring curved face's edge is discretised); a curved face becomes the
+// triangles of its tessellation, all with the face's number as marker.
+#include <BRepBndLib.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepGProp.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GProp_GProps.hxx>
+#include <IMeshTools_Parameters.hxx>
+#include <IntCurvesFace_ShapeIntersector.hxx>
+#include <Poly_PolygonOnTriangulation.hxx>
+#include <Poly_Triangulation.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
+#include <gp_Lin.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cad_private.h"
+#include "qualmesh/error.h"
+
+namespace qualmesh::cad {
+namespace {
+
+Point3 to_point(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
+
+double distance(const Point3& a, const Point3& b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+// Builds the PLC of one healed shape. Members are the conversion's state; convert() runs it once.
+class PlcBuilder {
+ public:
+  PlcBuilder(const TopoDS_Shape& solids, const CadOptions& options, const std::string& file)
+      : shape_(solids), options_(options), file_(file) {}
+
+  CadModel convert() {
+    TopExp::MapShapes(shape_, TopAbs_SOLID, solids_);
+    TopExp::MapShapes(shape_, TopAbs_FACE, faces_);
+    TopExp::MapShapes(shape_, TopAbs_EDGE, edges_);
+    TopExp::MapShapes(shape_, TopAbs_VERTEX, vertices_);
+    CadSummary& summary = model_.summary;
+    summary.num_solids = solids_.Extent();
+    summary.num_faces = faces_.Extent();
+    summary.num_edges = edges_.Extent();
+    summary.num_vertices = vertices_.Extent();
+    model_.plc.name = file_;
+
+    tessellate();
+    assign_face_sides();
+    vertex_ids_.assign(vertices_.Extent() + 1, kNoIndex);
+    edge_chains_.assign(edges_.Extent() + 1, {});
+    for (int f = 1; f <= faces_.Extent(); ++f) add_face(f);
+    add_segments();
+    add_regions();
+    return std::move(model_);
+  }
+
+ private:
+  void tessellate() {
+    Bnd_Box box;
+    BRepBndLib::Add(shape_, box);
+    diagonal_ = std::sqrt(box.SquareExtent());
+    double deflection = options_.deflection > 0 ? options_.deflection : options_.relative_deflection * diagonal_;
+    if (!(deflection > 0)) throw InputError(ErrorCode::Empty, "the CAD model has zero size", file_);
+    model_.summary.deflection_used = deflection;
+    IMeshTools_Parameters parameters;
+    parameters.Deflection = deflection;
+    parameters.Angle = options_.angular_deflection_deg * M_PI / 180.0;
+    parameters.Relative = Standard_False;
+    parameters.InParallel = Standard_False;  // deterministic and cheap enough; the mesher is the costly stage
+    parameters.ControlSurfaceDeflection = Standard_True;
+    BRepMesh_IncrementalMesh mesher(shape_, parameters);
+    if (!mesher.IsDone()) throw InputError(ErrorCode::Parse, "OpenCASCADE could not tessellate the model", file_);
+  }
+
+  // Solid numbers on both sides of each face, and the volume of each solid.
+  void assign_face_sides() {
+    CadSummary& summary = model_.summary;
+    summary.face_solids.assign(faces_.Extent(), {0, 0});
+    face_reversed_.assign(faces_.Extent() + 1, false);
+    for (int s = 1; s <= solids_.Extent(); ++s) {
+      GProp_GProps props;
+      BRepGProp::VolumeProperties(solids_(s), props);
+      summary.solid_volumes.push_back(props.Mass());
+      for (TopExp_Explorer it(solids_(s), TopAbs_FACE); it.More(); it.Next()) {
+        int f = faces_.FindIndex(it.Current());
+        auto& sides = summary.face_solids[f - 1];
+        if (sides[0] == 0) {
+          sides[0] = s;
+          face_reversed_[f] = it.Current().Orientation() == TopAbs_REVERSED;
+        } else if (sides[0] != s) {
+          sides[1] = s;
+        }
+      }
+    }
+  }
+
+  Index add_vertex(const Point3& p) {
+    model_.plc.vertices.push_back(p);
+    return static_cast<Index>(model_.plc.vertices.size() - 1);
+  }
+
+  Index vertex_id(const TopoDS_Vertex& v) {
+    int k = vertices_.FindIndex(v);
+    if (vertex_ids_[k] == kNoIndex) vertex_ids_[k] = add_vertex(to_point(BRep_Tool::Pnt(v)));
+    return vertex_ids_[k];
+  }
+
+  // The PLC vertex chain of an edge, from its first to its last vertex (forward orientation), made the first time a
+  // face's polygon of the edge is seen. `nodes` are triangulation node numbers along the edge's parameter.
+  const std::vector<Index>& edge_chain(const TopoDS_Edge& edge, const Poly_PolygonOnTriangulation& polygon,
+                                       const Poly_Triangulation& triangulation, const TopLoc_Location& location) {
+    int e = edges_.FindIndex(edge);
+    std::vector<Index>& chain = edge_chains_[e];
+    if (!chain.empty()) return chain;
+    TopoDS_Vertex first, last;
+    TopExp::Vertices(TopoDS::Edge(edge.Oriented(TopAbs_FORWARD)), first, last);
+    const int n = polygon.NbNodes();
+    if (BRep_Tool::Degenerated(edge)) {
+      chain.assign(n, vertex_id(first));
+      return chain;
+    }
+    chain.resize(n);
+    chain.front() = vertex_id(first);
+    chain.back() = vertex_id(last);
+    const gp_Trsf& transform = location.Transformation();
+    // Polygon nodes run along the edge parameter; check which end is the first vertex.
+    gp_Pnt start = triangulation.Node(polygon.Node(1)).Transformed(transform);
+    bool reversed = start.Distance(BRep_Tool::Pnt(first)) > start.Distance(BRep_Tool::Pnt(last)) &&
+                    !first.IsSame(last);
+    for (int i = 2; i < n; ++i) {
+      int node = polygon.Node(reversed ? n + 1 - i : i);
+      chain[i - 1] = add_vertex(to_point(triangulation.Node(node).Transformed(transform)));
+    }
+    return chain;
+  }
+
+  void add_face(int f) {
+    const TopoDS_Face face = TopoDS::Face(faces_(f).Oriented(TopAbs_FORWARD));
+    TopLoc_Location location;
+    Handle(Poly_Triangulation) triangulation = BRep_Tool::Triangulation(face, location);
+    if (triangulation.IsNull())
+      throw InputError(ErrorCode::Parse, "OpenCASCADE could not tessellate Face" + std::to_string(f), file_);
+    const gp_Trsf& transform = location.Transformation();
+    std::vector<Index> node_ids(triangulation->NbNodes() + 1, kNoIndex);
+    const bool reversed_face = face_reversed_[f];
+    const int marker = f;
+
+    // Boundary nodes of the face's triangulation -> the shared vertex chains of its edges.
+    double max_edge_tolerance = 0;
+    for (TopExp_Explorer it(face, TopAbs_EDGE); it.More(); it.Next()) {
+      const TopoDS_Edge edge = TopoDS::Edge(it.Current());
+      max_edge_tolerance = std::max(max_edge_tolerance, BRep_Tool::Tolerance(edge));
+      Handle(Poly_PolygonOnTriangulation) polygon = BRep_Tool::PolygonOnTriangulation(edge, triangulation, location);
+      if (polygon.IsNull())
+        throw InputError(ErrorCode::Parse,
+                         "OpenCASCADE left Edge" + std::to_string(edges_.FindIndex(edge)) + " of Face" +
+                             std::to_string(f) + " without a discretisation",
+                         file_);
+      const std::vector<Index>& chain = edge_chain(edge, *polygon, *triangulation, location);
+      const int n = polygon->NbNodes();
+      if (static_cast<int>(chain.size()) != n)
+        throw InputError(ErrorCode::Parse,
+                         "Edge" + std::to_string(edges_.FindIndex(edge)) + " is discretised differently in Face" +
+                             std::to_string(f) + " than in another face",
+                         file_);
+      // Match orientation of this polygon with the chain by the first node's position.
+      gp_Pnt start = triangulation->Node(polygon->Node(1)).Transformed(transform);
+      const Point3 s = to_point(start);
+      bool reversed = distance(s, model_.plc.vertices[chain.front()]) > distance(s, model_.plc.vertices[chain.back()]);
+      for (int i = 1; i <= n; ++i) node_ids[polygon->Node(i)] = chain[reversed ? n - i : i - 1];
+    }
+    model_.summary.face_tolerances.push_back(model_.summary.deflection_used + max_edge_tolerance +
+                                             BRep_Tool::Tolerance(face));
+
+    BRepAdaptor_Surface surface(face, Standard_False);
+    if (surface.GetType() == GeomAbs_Plane && add_planar_face(face, f)) return;
+
+    for (int i = 1; i <= triangulation->NbNodes(); ++i)
+      if (node_ids[i] == kNoIndex) node_ids[i] = add_vertex(to_point(triangulation->Node(i).Transformed(transform)));
+    for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
+      int a, b, c;
+      triangulation->Triangle(t).Get(a, b, c);
+      Index ia = node_ids[a], ib = node_ids[b], ic = node_ids[c];
+      if (ia == ib || ib == ic || ia == ic) continue;  // collapsed on a degenerate edge
+      Facet facet;
+      facet.polygons.push_back(reversed_face ? std::vector<Index>{ia, ic, ib} : std::vector<Index>{ia, ib, ic});
+      facet.marker = marker;
+      model_.plc.facets.push_back(std::move(facet));
+    }
+  }
+
+  // A planar face as one facet: each wire is a polygon (the vertex chains of its edges, in wire order). Returns
+  // false (and adds nothing) when a wire does not close, so that the caller falls back to the triangles.
+  bool add_planar_face(const TopoDS_Face& face, int f) {
+    Facet facet;
+    facet.marker = f;
+    TopLoc_Location location;
+    Handle(Poly_Triangulation) triangulation = BRep_Tool::Triangulation(face, location);
+    const TopoDS_Wire outer_wire = BRepTools::OuterWire(face);
+    gp_Vec outward(BRepAdaptor_Surface(face, Standard_False).Plane().Axis().Direction());
+    if (face_reversed_[f]) outward.Reverse();
+    for (TopExp_Explorer wires(face, TopAbs_WIRE); wires.More(); wires.Next()) {
+      std::vector<Index> loop;
+      for (BRepTools_WireExplorer it(TopoDS::Wire(wires.Current()), face); it.More(); it.Next()) {
+        const TopoDS_Edge& edge = it.Current();
+        if (BRep_Tool::Degenerated(edge)) continue;
+        const std::vector<Index>& chain = edge_chains_[edges_.FindIndex(edge)];
+        if (chain.empty()) return false;
+        const bool reversed = it.Orientation() == TopAbs_REVERSED;
+        for (std::size_t i = 0; i < chain.size(); ++i) {
+          Index v = reversed ? chain[chain.size() - 1 - i] : chain[i];
+          if (loop.empty() || loop.back() != v) loop.push_back(v);
+        }
+      }
+      if (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+      if (loop.size() < 3) return false;
+      // A wire that does not close, or visits a vertex twice, is not a simple polygon.
+      std::vector<Index> sorted = loop;
+      std::sort(sorted.begin(), sorted.end());
+      if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return false;
+      // Orientation by geometry, not by the wire explorer's bookkeeping: the outer wire turns counter-clockwise
+      // about the face's outward normal (the plane normal, flipped for a face reversed in its first solid), every
+      // inner wire clockwise.
+      const gp_Vec loop_normal = newell_normal(loop);
+      const bool outer = wires.Current().IsSame(outer_wire);
+      if ((loop_normal.Dot(outward) < 0) == outer) std::reverse(loop.begin(), loop.end());
+      facet.polygons.push_back(std::move(loop));
+    }
+    if (facet.polygons.empty()) return false;
+    model_.plc.facets.push_back(std::move(facet));
+    return true;
+  }
+
+  // Twice the vector area of a closed polygon (Newell's method); its direction is the polygon's normal.
+  gp_Vec newell_normal(const std::vector<Index>& loop) const {
+    gp_Vec normal(0, 0, 0);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Point3& p = model_.plc.vertices[loop[i]];
+      const Point3& q = model_.plc.vertices[loop[(i + 1) % loop.size()]];
+      normal += gp_Vec((p[1] - q[1]) * (p[2] + q[2]), (p[2] - q[2]) * (p[0] + q[0]), (p[0] - q[0]) * (p[1] + q[1]));
+    }
+    return normal;
+  }
+
+  void add_segments() {
+    for (int e = 1; e <= edges_.Extent(); ++e) {
+      const std::vector<Index>& chain = edge_chains_[e];
+      if (BRep_Tool::Degenerated(TopoDS::Edge(edges_(e)))) continue;
+      for (std::size_t i = 0; i + 1 < chain.size(); ++i)
+        if (chain[i] != chain[i + 1]) model_.plc.segments.push_back({chain[i], chain[i + 1], e});
+    }
+  }
+
+  // A seed strictly inside each solid: from the centroid of one of the solid's larger tessellation triangles, go
+  // inward half-way to the next hit of the inward ray with the solid; keep the first such point that OpenCASCADE
+  // classifies IN and that lies well beyond the deflection from both walls.
+  void add_regions() {
+    for (int s = 1; s <= solids_.Extent(); ++s) {
+      const TopoDS_Shape& solid = solids_(s);
+      struct Candidate {
+        double area;
+        gp_Pnt centroid;
+        gp_Dir inward;
+      };
+      std::vector<Candidate> candidates;
+      for (TopExp_Explorer it(solid, TopAbs_FACE); it.More(); it.Next()) {
+        const TopoDS_Face& face = TopoDS::Face(it.Current());
+        TopLoc_Location location;
+        Handle(Poly_Triangulation) triangulation = BRep_Tool::Triangulation(face, location);
+        if (triangulation.IsNull()) continue;
+        const bool flip = face.Orientation() == TopAbs_REVERSED;
+        for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
+          int a, b, c;
+          triangulation->Triangle(t).Get(a, b, c);
+          gp_Pnt pa = triangulation->Node(a).Transformed(location), pb = triangulation->Node(b).Transformed(location),
+                 pc = triangulation->Node(c).Transformed(location);
+          gp_Vec normal = gp_Vec(pa, pb).Crossed(gp_Vec(pa, pc));
+          double area = 0.5 * normal.Magnitude();
+          if (area <= 0) continue;
+          if (!flip) normal.Reverse();  // outward normal of a forward face is the surface normal; go inward
+          gp_Pnt centroid((pa.XYZ() + pb.XYZ() + pc.XYZ()) / 3.0);
+          candidates.push_back({area, centroid, gp_Dir(normal)});
+        }
+      }
+      std::stable_sort(candidates.begin(), candidates.end(),
+                       [](const Candidate& x, const Candidate& y) { return x.area > y.area; });
+      IntCurvesFace_ShapeIntersector intersector;
+      intersector.Load(solid, 1e-9 * diagonal_);
+      BRepClass3d_SolidClassifier classifier(solid);
+      bool found = false;
+      const double margin = 2 * model_.summary.deflection_used;
+      const std::size_t tries = std::min<std::size_t>(candidates.size(), 200);
+      for (std::size_t k = 0; k < tries && !found; ++k) {
+        const Candidate& c = candidates[k];
+        gp_Pnt start = c.centroid.Translated(gp_Vec(c.inward) * 1e-7 * diagonal_);
+        intersector.Perform(gp_Lin(start, c.inward), 0, 2 * diagonal_);
+        if (!intersector.IsDone() || intersector.NbPnt() == 0) continue;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int i = 1; i <= intersector.NbPnt(); ++i) nearest = std::min(nearest, intersector.WParameter(i));
+        if (!(nearest > 2 * margin)) continue;
+        gp_Pnt seed = start.Translated(gp_Vec(c.inward) * (0.5 * nearest));
+        classifier.Perform(seed, 1e-9 * diagonal_);
+        if (classifier.State() != TopAbs_IN) continue;
+        model_.plc.regions.push_back({to_point(seed), s, 0});
+        found = true;
+      }
+      if (!found)
+        throw InputError(ErrorCode::DegenerateFacet,
+                         "found no point strictly inside Solid" + std::to_string(s) +
+                             " (too thin for the tessellation deflection?)",
+                         file_);
+    }
+  }
+
+  const TopoDS_Shape shape_;
+  const CadOptions& options_;
+  const std::string file_;
+  TopTools_IndexedMapOfShape solids_, faces_, edges_, vertices_;
+  std::vector<bool> face_reversed_;               // by face number: REVERSED in its first solid
+  std::vector<Index> vertex_ids_;                 // by CAD vertex number
+  std::vector<std::vector<Index>> edge_chains_;   // by CAD edge number
+  double diagonal_ = 0;
+  CadModel model_;
+};
+
+}  // namespace
+
+CadModel convert_solids_to_plc(const TopoDS_Shape& solids, const CadOptions& options, const std::string& file) {
+  try {
+    return PlcBuilder(solids, options, file).convert();
+  } catch (const Standard_Failure& failure) {
+    throw InputError(ErrorCode::Parse,
+                     std::string("OpenCASCADE failed while tessellating the model: ") + failure.GetMessageString(),
+                     file);
+  }
+}
+
+}  // namespace qualmesh::cad

@@ -1,0 +1,41 @@
+// Private interface between the stages of the CAD front end (cad_import.cpp drives them in this order):
+// read a shape (occt_read.cpp, fcstd_read.cpp) -> heal it into solids (shape_heal.cpp) -> turn it into a PLC
+// (brep_to_plc.cpp). OpenSCAD files take their own path (scad_read.cpp). OpenCASCADE types appear only here and in
+// these files, never in a public header.
+#pragma once
+
+#include <TopoDS_Shape.hxx>
+
+#include <string>
+#include <vector>
+
+#include "qualmesh/cad_import.h"
+
+namespace qualmesh::cad {
+
+// Reads a STEP, IGES or OCCT BREP file; `format` is "STEP", "IGES" or "BREP". Throws InputError.
+TopoDS_Shape read_occt_file(const std::string& path, const std::string& format);
+
+// Reads the visible solids of a FreeCAD document (see fcstd_read.cpp for the rule). Appends what it chose to `log`.
+TopoDS_Shape read_fcstd_file(const std::string& path, std::vector<std::string>& log);
+
+// Turns any shape into a compound of closed solids that share their common faces: sews loose faces (when
+// options.heal), fixes small and degenerate edges, makes solids of closed shells, glues touching solids (general
+// fuse) so that a face between two solids is one face. Throws InputError(OpenBoundary) naming the faces and edges of
+// `shape` (numbered as in `shape`) that stay open. Appends what it did to `log`.
+TopoDS_Shape heal_into_solids(const TopoDS_Shape& shape, const CadOptions& options, const std::string& file,
+                              std::vector<std::string>& log);
+
+// Tessellates the solids of `solids` (output of heal_into_solids) and builds the PLC and summary.
+CadModel convert_solids_to_plc(const TopoDS_Shape& solids, const CadOptions& options, const std::string& file);
+
+// Renders an OpenSCAD file with `openscad` and reads the result, repairing only exactly.
+CadModel read_scad_file(const std::string& path, const CadOptions& options);
+
+// Silences OpenCASCADE's default console printers (library code never prints). Idempotent.
+void silence_occt_messages();
+
+// Lower-case file extension with the dot (".step"), "" when none.
+std::string lower_extension(const std::string& path);
+
+}  // namespace qualmesh::cad

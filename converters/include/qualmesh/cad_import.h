@@ -1,0 +1,78 @@
+// CAD and OpenSCAD front end: reads a B-rep model (STEP/STP, IGES/IGS, OCCT BREP, FreeCAD .FCStd) through
+// OpenCASCADE, or renders an OpenSCAD .scad file with the `openscad` command, heals what a CAD user expects to be
+// healed, and delivers the piecewise linear complex (plc.h) that the mesher consumes.
+//
+// What the PLC carries (numbers are 1-based and follow FreeCAD's naming, i.e. TopExp::MapShapes order of the healed
+// shape: Face<i>, Edge<i>, Solid<i>):
+//  - a planar CAD face is one polygonal facet, exact: its outer wire and inner wires are polygons (an inner loop is a
+//    hole by the odd-count rule of plc.h); a curved face is a set of triangular facets from OpenCASCADE's
+//    tessellation with the chordal deflection of CadOptions. Facet::marker = CAD face number.
+//  - every CAD edge is discretised once, and every facet that uses the edge uses exactly that vertex chain; the
+//    chain's pieces are Plc segments with Segment::marker = CAD edge number (degenerate edges have none).
+//  - every solid gets a RegionSeed strictly inside it with attribute = solid number; a face shared by two solids
+//    appears once (an internal facet).
+//  - facet polygons are oriented outward of the first solid that uses the face (CadSummary::face_solids[i][0]).
+// For .scad files the PLC is OpenSCAD's rendered surface (facet marker 0, no CAD numbering and no region seed, as
+// for any surface input), see read_cad().
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "qualmesh/plc.h"
+
+namespace qualmesh {
+
+struct CadOptions {
+  // Absolute chordal deflection for curved faces, in model units; 0 = derive it from relative_deflection.
+  double deflection = 0;
+  // Chordal deflection relative to the diagonal of the model's bounding box, used when deflection == 0.
+  double relative_deflection = 0.001;
+  // Largest angle between the normals of neighbouring tessellation triangles on a curved face, in degrees.
+  double angular_deflection_deg = 20;
+  // Sew loose faces into shells and solids, fix small and degenerate edges (ShapeFix).
+  bool heal = true;
+  // Sewing tolerance in model units; 0 = automatic (1e-6 of the bounding-box diagonal, at least the largest
+  // tolerance stored in the model's vertices, at most 1e-4 of the diagonal).
+  double sewing_tolerance = 0;
+  // OpenSCAD only: seconds the `openscad` command may run before it is stopped; <= 0: no limit.
+  double openscad_timeout_s = 600;
+  // OpenSCAD only: the command to run ("openscad" on PATH by default).
+  std::string openscad_command = "openscad";
+};
+
+struct CadSummary {
+  std::size_t num_solids = 0;    // solids of the healed shape = regions of the PLC
+  std::size_t num_faces = 0;     // CAD faces = distinct facet markers of the PLC
+  std::size_t num_edges = 0;     // CAD edges (seam and degenerate edges included, as FreeCAD counts them)
+  std::size_t num_vertices = 0;  // CAD vertices
+  std::vector<double> solid_volumes;  // OpenCASCADE's volume of each solid (solid_volumes[i] is Solid<i+1>)
+  // For each face (face_solids[i] is Face<i+1>): the solid numbers on its two sides, 0 = outside. The facets of the
+  // face are oriented outward of face_solids[i][0]; an internal face has both entries non-zero.
+  std::vector<std::array<int, 2>> face_solids;
+  // Largest distance from a tessellation point to its CAD face (the deflection used plus the face's tolerance), per
+  // face, in model units. For .scad: 0 (the facets are the model).
+  std::vector<double> face_tolerances;
+  double deflection_used = 0;  // absolute chordal deflection actually used, in model units
+  std::vector<std::string> healing_log;  // what was healed, one line per action (empty: nothing needed)
+  std::string source_format;             // "STEP", "IGES", "BREP", "FCStd", "OpenSCAD"
+};
+
+struct CadModel {
+  Plc plc;
+  CadSummary summary;
+};
+
+// True when the file name ends with .step .stp .iges .igs .brep .brp .fcstd or .scad (case-insensitive).
+bool is_cad_path(const std::string& path);
+
+// Reads a CAD or OpenSCAD file into a PLC. Throws InputError (error.h) naming what is wrong: an unreadable file
+// (ErrorCode::Io / Parse), no solid or face (Empty), a model that stays open after healing (OpenBoundary; the message
+// names the open faces and edges as FaceN / EdgeN of the file as read), an OpenSCAD failure (Parse, with OpenSCAD's
+// own message), an OpenSCAD render that cannot be repaired exactly (OpenBoundary / DegenerateFacet).
+// Does not print; OpenCASCADE's own console messages are silenced.
+CadModel read_cad(const std::string& path, const CadOptions& options = {});
+
+}  // namespace qualmesh

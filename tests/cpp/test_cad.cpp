@@ -1,0 +1,340 @@
+// Tests of the CAD and OpenSCAD front end (cad_import.h) at the PLC level, on every model of shared/data/cad and
+// shared/data/scad: each one loads with the properties below, or is refused with a specific message.
+//  - one facet marker per CAD face, segment markers are CAD edge numbers, one region seed per solid;
+//  - each solid's facets close (every edge used an even number of times, at least twice);
+//  - each solid's PLC volume (divergence theorem over the facets, oriented by CadSummary::face_solids) is OCCT's
+//    volume within the tessellation bound sum over faces of (face area x face tolerance);
+//  - multi-solid models give several regions; a BooleanFragments document gives an internal facet.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "qualmesh/cad_import.h"
+#include "qualmesh/error.h"
+#include "test_support.h"
+
+namespace qualmesh {
+namespace {
+
+using test::shared_path;
+
+double triple(const Point3& a, const Point3& b, const Point3& c) {
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+double polygon_area(const Plc& plc, const std::vector<Index>& loop) {
+  double n[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Point3& p = plc.vertices[loop[i]];
+    const Point3& q = plc.vertices[loop[(i + 1) % loop.size()]];
+    n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+    n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+    n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+  }
+  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+// Signed volume enclosed by one facet's polygons (fan from each loop's first vertex), times 6.
+double facet_volume6(const Plc& plc, const Facet& facet) {
+  double v = 0;
+  for (const auto& loop : facet.polygons)
+    for (std::size_t i = 1; i + 1 < loop.size(); ++i)
+      v += triple(plc.vertices[loop[0]], plc.vertices[loop[i]], plc.vertices[loop[i + 1]]);
+  return v;
+}
+
+struct Figures {
+  std::vector<double> volumes;       // per solid (index 0 = Solid1)
+  std::vector<double> volume_bound;  // per solid: sum of area x tolerance of its faces
+  std::vector<std::size_t> odd_edges, thin_edges;  // per solid: edges used an odd number of times / only once
+  std::size_t num_internal_facets = 0;
+  std::set<int> markers;
+};
+
+Figures measure(const CadModel& model) {
+  const Plc& plc = model.plc;
+  const CadSummary& summary = model.summary;
+  Figures fig;
+  const std::size_t ns = summary.num_solids;
+  fig.volumes.assign(ns, 0);
+  fig.volume_bound.assign(ns, 0);
+  fig.odd_edges.assign(ns, 0);
+  fig.thin_edges.assign(ns, 0);
+  std::vector<std::map<std::pair<Index, Index>, int>> uses(ns);
+  for (const Facet& facet : plc.facets) {
+    fig.markers.insert(facet.marker);
+    if (facet.marker < 1 || facet.marker > static_cast<int>(summary.num_faces)) continue;
+    const auto sides = summary.face_solids[facet.marker - 1];
+    if (sides[1] != 0) ++fig.num_internal_facets;
+    const double v6 = facet_volume6(plc, facet);
+    double area = 0;
+    for (const auto& loop : facet.polygons) area += polygon_area(plc, loop);
+    for (int k = 0; k < 2; ++k) {
+      if (sides[k] == 0) continue;
+      const int s = sides[k] - 1;
+      fig.volumes[s] += (k == 0 ? v6 : -v6) / 6;
+      fig.volume_bound[s] += area * summary.face_tolerances[facet.marker - 1];
+      for (const auto& loop : facet.polygons)
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          Index a = loop[i], b = loop[(i + 1) % loop.size()];
+          ++uses[s][{std::min(a, b), std::max(a, b)}];
+        }
+    }
+  }
+  for (std::size_t s = 0; s < ns; ++s)
+    for (const auto& [edge, n] : uses[s]) {
+      if (n % 2) ++fig.odd_edges[s];
+      if (n < 2) ++fig.thin_edges[s];
+    }
+  return fig;
+}
+
+struct CadCase {
+  const char* file;
+  std::size_t solids, faces;
+  std::size_t internal_facets;  // facets of faces shared by two solids
+};
+
+class CadModels : public ::testing::TestWithParam<CadCase> {};
+
+TEST_P(CadModels, ConvertsToClosedPlcWithCadNumbering) {
+  const CadCase& c = GetParam();
+  const std::string path = shared_path(std::string("data/cad/") + c.file);
+  QM_REQUIRE_FILE(path);
+  const CadModel model = read_cad(path);
+  const Plc& plc = model.plc;
+  const CadSummary& summary = model.summary;
+  EXPECT_EQ(summary.num_solids, c.solids);
+  EXPECT_EQ(summary.num_faces, c.faces);
+  ASSERT_EQ(summary.face_solids.size(), summary.num_faces);
+  ASSERT_EQ(summary.face_tolerances.size(), summary.num_faces);
+  ASSERT_EQ(summary.solid_volumes.size(), summary.num_solids);
+
+  const Figures fig = measure(model);
+  // One distinct facet marker per CAD face, numbered 1..num_faces.
+  EXPECT_EQ(fig.markers.size(), summary.num_faces);
+  EXPECT_EQ(*fig.markers.begin(), 1);
+  EXPECT_EQ(*fig.markers.rbegin(), static_cast<int>(summary.num_faces));
+  for (const Segment& s : plc.segments) {
+    ASSERT_GE(s.marker, 1);
+    ASSERT_LE(s.marker, static_cast<int>(summary.num_edges));
+    ASSERT_NE(s.a, s.b);
+  }
+  // One region seed per solid, attributes 1..num_solids.
+  ASSERT_EQ(plc.regions.size(), summary.num_solids);
+  for (std::size_t s = 0; s < plc.regions.size(); ++s) EXPECT_EQ(plc.regions[s].attribute, static_cast<int>(s + 1));
+  EXPECT_EQ(fig.num_internal_facets > 0, c.internal_facets > 0);
+
+  for (std::size_t s = 0; s < summary.num_solids; ++s) {
+    SCOPED_TRACE("Solid" + std::to_string(s + 1));
+    EXPECT_EQ(fig.odd_edges[s], 0u) << "edges used an odd number of times";
+    EXPECT_EQ(fig.thin_edges[s], 0u) << "edges used by one facet";
+    const double occt = summary.solid_volumes[s];
+    EXPECT_GT(occt, 0);
+    EXPECT_NEAR(fig.volumes[s], occt, fig.volume_bound[s]) << "PLC volume vs OpenCASCADE's";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    SharedData, CadModels,
+    ::testing::Values(CadCase{"1385_Laufrad_1000.stp", 1, 123, 0}, CadCase{"918_pump_carter_sup_21_03_2006.stp", 1, 119, 0},
+                      CadCase{"Kurbelwelle.stp", 1, 58, 0}, CadCase{"U_Joint_2.stp", 1, 133, 0},
+                      CadCase{"Zylkopf.stp", 1, 137, 0}, CadCase{"bottle.brep", 1, 71, 0},
+                      CadCase{"box_static.FCStd", 1, 6, 0}, CadCase{"cube1000.igs", 1, 6, 0},
+                      CadCase{"fcFEM_Spanner.FCStd", 1, 22, 0},
+                      CadCase{"fcFEM_Stacked_Beam_Example.FCStd", 2, 11, 1}, CadCase{"model1.igs", 1, 28, 0},
+                      CadCase{"part.step", 1, 26, 0}, CadCase{"red_cube_blue_cylinder.step", 2, 9, 0},
+                      CadCase{"t20_data.step", 1, 21, 0}, CadCase{"wrenchnut.stp", 2, 36, 0}),
+    [](const ::testing::TestParamInfo<CadCase>& info) {
+      std::string name = info.param.file;
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name;
+    });
+
+TEST(CadImport, RecognisesCadExtensions) {
+  EXPECT_TRUE(is_cad_path("a/b/Part.STEP"));
+  EXPECT_TRUE(is_cad_path("x.stp"));
+  EXPECT_TRUE(is_cad_path("x.IGS"));
+  EXPECT_TRUE(is_cad_path("x.iges"));
+  EXPECT_TRUE(is_cad_path("x.brep"));
+  EXPECT_TRUE(is_cad_path("x.brp"));
+  EXPECT_TRUE(is_cad_path("doc.FCStd"));
+  EXPECT_TRUE(is_cad_path("m.scad"));
+  EXPECT_FALSE(is_cad_path("m.off"));
+  EXPECT_FALSE(is_cad_path("step"));
+}
+
+TEST(CadImport, PlanarBoxIsSixExactFacets) {
+  const std::string path = shared_path("data/cad/box_static.FCStd");
+  QM_REQUIRE_FILE(path);
+  const CadModel model = read_cad(path);
+  EXPECT_EQ(model.plc.vertices.size(), 8u);
+  EXPECT_EQ(model.plc.facets.size(), 6u);
+  EXPECT_EQ(model.plc.segments.size(), 12u);
+  for (const Facet& f : model.plc.facets) EXPECT_EQ(f.polygons.size(), 1u);
+}
+
+TEST(CadImport, StackedBeamsShareOneInternalFacet) {
+  const std::string path = shared_path("data/cad/fcFEM_Stacked_Beam_Example.FCStd");
+  QM_REQUIRE_FILE(path);
+  const CadModel model = read_cad(path);
+  int internal = 0;
+  for (const auto& sides : model.summary.face_solids)
+    if (sides[0] && sides[1]) {
+      ++internal;
+      EXPECT_NE(sides[0], sides[1]);
+    }
+  EXPECT_EQ(internal, 1);
+  ASSERT_EQ(model.plc.regions.size(), 2u);
+}
+
+TEST(CadImport, RefusesWhatStaysOpenNamingFacesAndEdges) {
+  // model1.igs is a soup of 28 trimmed faces. With the automatic tolerance (1e-6 of the diagonal) it sews into a
+  // closed solid (covered above); with a far smaller tolerance it stays open and must be refused by name.
+  const std::string path = shared_path("data/cad/model1.igs");
+  QM_REQUIRE_FILE(path);
+  CadOptions options;
+  options.sewing_tolerance = 1e-9;
+  try {
+    read_cad(path, options);
+    FAIL() << "expected an open-boundary error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::OpenBoundary);
+    EXPECT_NE(e.message().find("stays open after sewing"), std::string::npos) << e.what();
+    EXPECT_NE(e.message().find("Face"), std::string::npos) << e.what();
+    EXPECT_NE(e.message().find("Edge"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CadImport, FaceSoupWithoutHealingIsRefused) {
+  const std::string path = shared_path("data/cad/cube1000.igs");
+  QM_REQUIRE_FILE(path);
+  CadOptions options;
+  options.heal = false;
+  try {
+    read_cad(path, options);
+    FAIL() << "expected an open-boundary error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::OpenBoundary);
+    EXPECT_NE(e.message().find("Face1"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CadImport, MissingAndUnknownFilesAreTypedErrors) {
+  try {
+    read_cad("no-such-file.step");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::Io);
+  }
+  try {
+    read_cad("model.xyz");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::Unsupported);
+  }
+  const auto dir = test::temp_dir("cad-garbage");
+  const std::string garbage = (dir / "garbage.step").string();
+  std::ofstream(garbage) << "this is not a STEP file\n";
+  try {
+    read_cad(garbage);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_TRUE(e.code() == ErrorCode::Parse || e.code() == ErrorCode::Empty) << e.what();
+  }
+}
+
+TEST(CadImport, SmallerDeflectionGivesMoreFacetsAndCloserVolume) {
+  const std::string path = shared_path("data/cad/red_cube_blue_cylinder.step");
+  QM_REQUIRE_FILE(path);
+  CadOptions coarse, fine;
+  coarse.relative_deflection = 0.01;
+  fine.deflection = 0.001;
+  const CadModel a = read_cad(path, coarse), b = read_cad(path, fine);
+  EXPECT_LT(a.plc.facets.size(), b.plc.facets.size());
+  EXPECT_DOUBLE_EQ(b.summary.deflection_used, 0.001);
+  const Figures fa = measure(a), fb = measure(b);
+  for (std::size_t s = 0; s < 2; ++s)
+    EXPECT_LE(std::fabs(fb.volumes[s] - b.summary.solid_volumes[s]),
+              std::fabs(fa.volumes[s] - a.summary.solid_volumes[s]) + 1e-9);
+}
+
+TEST(CadImport, SameInputGivesSamePlc) {
+  const std::string path = shared_path("data/cad/part.step");
+  QM_REQUIRE_FILE(path);
+  const CadModel a = read_cad(path), b = read_cad(path);
+  ASSERT_EQ(a.plc.vertices, b.plc.vertices);
+  ASSERT_EQ(a.plc.facets.size(), b.plc.facets.size());
+  for (std::size_t i = 0; i < a.plc.facets.size(); ++i) ASSERT_EQ(a.plc.facets[i].polygons, b.plc.facets[i].polygons);
+}
+
+// ---- OpenSCAD ----------------------------------------------------------------------------------------------------
+
+bool have_openscad() { return std::system("openscad --version >/dev/null 2>&1") == 0; }
+
+struct ScadCase {
+  const char* file;
+  std::size_t vertices, facets;  // after exact repair
+};
+
+class ScadModels : public ::testing::TestWithParam<ScadCase> {};
+
+TEST_P(ScadModels, RendersToClosedSurface) {
+  const ScadCase& c = GetParam();
+  const std::string path = shared_path(std::string("data/scad/") + c.file);
+  QM_REQUIRE_FILE(path);
+  if (!have_openscad()) GTEST_SKIP() << "openscad not installed";
+  const CadModel model = read_cad(path);
+  const Plc& plc = model.plc;
+  EXPECT_EQ(plc.vertices.size(), c.vertices);
+  EXPECT_EQ(plc.facets.size(), c.facets);
+  std::map<std::pair<Index, Index>, int> uses;
+  double v6 = 0;
+  for (const Facet& f : plc.facets) {
+    v6 += facet_volume6(plc, f);
+    for (const auto& loop : f.polygons)
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        Index a = loop[i], b = loop[(i + 1) % loop.size()];
+        ++uses[{std::min(a, b), std::max(a, b)}];
+      }
+  }
+  for (const auto& [edge, n] : uses) ASSERT_EQ(n, 2) << "edge " << edge.first << "-" << edge.second;
+  EXPECT_GT(v6, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedData, ScadModels,
+                         ::testing::Values(ScadCase{"CSG.scad", 1498, 3004}, ScadCase{"example001.scad", 624, 1264},
+                                           ScadCase{"example019.scad", 1958, 3912},
+                                           ScadCase{"example024.scad", 4550, 12012},
+                                           ScadCase{"candleStand.scad", 4020, 8064},
+                                           ScadCase{"logo.scad", 4052, 8120}),
+                         [](const ::testing::TestParamInfo<ScadCase>& info) {
+                           std::string name = info.param.file;
+                           return name.substr(0, name.find('.'));
+                         });
+
+TEST(ScadImport, OpenScadErrorsReachTheUser) {
+  if (!have_openscad()) GTEST_SKIP() << "openscad not installed";
+  const auto dir = test::temp_dir("cad-scad-error");
+  const std::string bad = (dir / "bad.scad").string();
+  std::ofstream(bad) << "cube([1,2,3]\n";
+  try {
+    read_cad(bad);
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::Parse);
+    EXPECT_NE(e.message().find("openscad failed"), std::string::npos) << e.what();
+    EXPECT_NE(e.message().find("ERROR"), std::string::npos) << e.what();
+  }
+  const std::string empty = (dir / "empty.scad").string();
+  std::ofstream(empty) << "echo(\"nothing\");\n";
+  EXPECT_THROW(read_cad(empty), InputError);
+}
+
+}  // namespace
+}  // namespace qualmesh
