@@ -1,0 +1,87 @@
+// The QualMesh mesher, step 1 and 2 of QUALMESH (Cheng & Dey, "Quality Meshing with Weighted Delaunay
+// Refinement", Section 3.7): the Delaunay triangulation of the input vertices, then Delaunay refinement by Rule 1
+// (encroached subsegments), Rule 2 (encroached subfacets) and Rule 3 (tetrahedra of radius-edge ratio above rho0),
+// plus a size field (maximum edge length and volume). The result conforms to the input: every input segment and
+// facet is a union of mesh edges and faces (Theorem 7.2), and the mesh is Delaunay (all weights are zero here;
+// pumping, step 3, is a later stage).
+//
+// mesh_plc() mutates nothing but its result; it never prints and never exits: progress and log lines go through the
+// callbacks. Bad input (a PLC whose vertices span no volume, constraints that cross) throws InputError.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+#include "qualmesh/plc.h"
+#include "qualmesh/tet_mesh.h"
+
+namespace qualmesh {
+
+// What the user asked for. Derived values (squared bounds, acute-vertex flags) live in the engine's state.
+struct MeshOptions {
+  // rho0 of Rule 3: circumradius / shortest edge bound for tetrahedra inside the domain. Values below about 1.1
+  // may not terminate (the theory needs rho0 > 2; 1.5 works in practice on non-acute inputs).
+  double radius_edge_bound = 2.0;
+  // Longest edge allowed in a tetrahedron inside the domain, in model units. 0 = no limit.
+  double max_edge_length = 0;
+  // Largest volume allowed for a tetrahedron inside the domain, in model units cubed. 0 = no limit. Region seeds
+  // (RegionSeed::max_volume) may lower it per region.
+  double max_volume = 0;
+  // Safety stop: refinement ends (MeshStatus::VertexLimitReached) when the triangulation holds this many vertices.
+  std::size_t max_vertices = 50'000'000;
+};
+
+enum class MeshStage { Initial, Boundary, Refinement, Regions, Extraction };
+
+// Short lower-case name of a stage ("boundary", ...).
+const char* to_string(MeshStage stage);
+
+struct ProgressEvent {
+  MeshStage stage = MeshStage::Initial;
+  double fraction = 0;  // estimated fraction of this stage done, in [0, 1]
+  std::size_t num_vertices = 0;
+};
+
+using ProgressCallback = std::function<void(const ProgressEvent&)>;  // may be empty
+using LogCallback = std::function<void(const std::string&)>;         // may be empty
+
+struct MeshStats {
+  std::size_t num_input_vertices = 0;
+  std::size_t num_steiner_vertices = 0;       // vertices added by Rules 1-3 (all of them, inside or not)
+  std::size_t num_rule1_insertions = 0;       // subsegment splits (midpoints or concentric-shell points)
+  std::size_t num_rule2_insertions = 0;       // subfacet circumcentres
+  std::size_t num_rule3_insertions = 0;       // tetrahedron circumcentres
+  std::size_t num_rejected_circumcenters = 0; // Rule 2 and Rule 3 centres rejected because they encroach
+  std::size_t num_subfacet_flips = 0;         // 2D flips made to match a cocircular choice of the 3D triangulation
+  std::size_t num_skipped_small_angle = 0;    // Rule 3 skips: shortest edge forced by an acute input angle
+  std::size_t num_tets = 0;                   // tetrahedra in the output
+  std::size_t num_boundary_faces = 0;         // faces in the output that lie on input facets
+  double max_radius_edge = 0;                 // over the output tetrahedra
+  double min_dihedral_deg = 0;                // over the output tetrahedra
+  // Wall-clock seconds per stage.
+  double seconds_initial = 0;
+  double seconds_boundary = 0;
+  double seconds_regions = 0;
+  double seconds_refinement = 0;
+  double seconds_extraction = 0;
+};
+
+enum class MeshStatus {
+  Ok,
+  VertexLimitReached,  // MeshOptions::max_vertices stopped refinement; the mesh is conforming only if the
+                       // boundary stage had finished
+};
+
+struct MeshResult {
+  MeshStatus status = MeshStatus::Ok;
+  TetMesh mesh;  // positively oriented tets, region attribute per tet, input facet id per boundary/internal face
+  MeshStats stats;
+};
+
+// Meshes the volume bounded by `plc` (regions separated by internal facets; hole seeds remove regions; the outside
+// of the closed boundary is not meshed). Deterministic: the same input and options give the same mesh, bit for bit.
+MeshResult mesh_plc(const Plc& plc, const MeshOptions& options = {}, const ProgressCallback& progress = {},
+                    const LogCallback& log = {});
+
+}  // namespace qualmesh

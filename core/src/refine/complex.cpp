@@ -1,0 +1,224 @@
+// Input complex of the refinement engine: segments, facet frames and incidences (paper Section 2, "Incidence",
+// "Adjacent elements"), and the acute input angles of Section 3.7's assumption (flagged, not rejected: the engine
+// protects their apices, see subsegments.cpp and refine_engine.cpp).
+#include "refine/complex.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "qualmesh/error.h"
+
+namespace qualmesh::detail {
+
+namespace {
+
+Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Point3 cross(const Point3& a, const Point3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Point3 normalized(const Point3& a) {
+  const double n = std::sqrt(dot(a, a));
+  return n > 0 ? Point3{a[0] / n, a[1] / n, a[2] / n} : Point3{0, 0, 0};
+}
+
+// Angle in degrees between two directions.
+double angle_deg(const Point3& a, const Point3& b) {
+  const double c = dot(normalized(a), normalized(b));
+  return std::acos(std::max(-1.0, std::min(1.0, c))) * 180.0 / M_PI;
+}
+
+// Newell normal of all the polygons of a facet (robust for non-convex polygons).
+Point3 facet_normal(const Plc& plc, const Facet& facet) {
+  Point3 n{0, 0, 0};
+  for (const auto& loop : facet.polygons) {
+    if (loop.size() < 3) continue;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Point3& p = plc.vertices[loop[i]];
+      const Point3& q = plc.vertices[loop[(i + 1) % loop.size()]];
+      n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+      n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+      n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+    }
+  }
+  return normalized(n);
+}
+
+constexpr double kAcuteDeg = 90.0 - 1e-6;
+
+}  // namespace
+
+std::array<double, 2> PlaneFrame::to_local(const Point3& p) const {
+  const Point3 d = sub(p, origin);
+  return {dot(d, e1), dot(d, e2)};
+}
+
+Point3 PlaneFrame::to_global(const std::array<double, 2>& uv) const {
+  return {origin[0] + uv[0] * e1[0] + uv[1] * e2[0], origin[1] + uv[0] * e1[1] + uv[1] * e2[1],
+          origin[2] + uv[0] * e1[2] + uv[1] * e2[2]};
+}
+
+bool InputComplex::facet_has_segment(Index facet, Index segment) const {
+  return segment_in_facet(segment, facet) != nullptr;
+}
+
+const SegmentInFacet* InputComplex::segment_in_facet(Index segment, Index facet) const {
+  for (const SegmentInFacet& s : segment_facets[segment])
+    if (s.facet == facet) return &s;
+  return nullptr;
+}
+
+bool InputComplex::elements_meet_at_acute_vertex(const std::vector<Index>& a, const std::vector<Index>& b) const {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (a[i] < b[j]) {
+      ++i;
+    } else if (b[j] < a[i]) {
+      ++j;
+    } else {
+      if (acute_vertex[a[i]]) return true;
+      ++i, ++j;
+    }
+  }
+  return false;
+}
+
+InputComplex build_input_complex(const Plc& plc) {
+  InputComplex c;
+  c.plc = &plc;
+  c.segments = collect_segments(plc);
+  const std::size_t nv = plc.vertices.size();
+  c.vertex_segments.resize(nv);
+  c.vertex_facets.resize(nv);
+  c.segment_facets.resize(c.segments.size());
+  c.acute_vertex.assign(nv, 0);
+  c.segment_index.reserve(c.segments.size() * 2);
+  for (Index s = 0; s < c.segments.size(); ++s) {
+    c.segment_index.emplace(InputComplex::key(c.segments[s].a, c.segments[s].b), s);
+    c.vertex_segments[c.segments[s].a].push_back(s);
+    c.vertex_segments[c.segments[s].b].push_back(s);
+  }
+
+  c.frames.resize(plc.facets.size());
+  c.facet_vertices.resize(plc.facets.size());
+  for (Index f = 0; f < plc.facets.size(); ++f) {
+    const Facet& facet = plc.facets[f];
+    std::vector<Index>& verts = c.facet_vertices[f];
+    // Count closed polygons per edge (parity) and note 2-vertex loops.
+    std::unordered_map<std::uint64_t, int> polygon_count;
+    std::vector<Index> inside_segments;
+    for (const auto& loop : facet.polygons) {
+      for (Index v : loop) verts.push_back(v);
+      if (loop.size() >= 3) {
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          const Index a = loop[i], b = loop[(i + 1) % loop.size()];
+          if (a != b) ++polygon_count[InputComplex::key(a, b)];
+        }
+      } else if (loop.size() == 2 && loop[0] != loop[1]) {
+        inside_segments.push_back(c.find_segment(loop[0], loop[1]));
+      }
+    }
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    for (Index v : verts) c.vertex_facets[v].push_back(f);
+    for (const auto& [k, count] : polygon_count) {
+      const Index s = c.find_segment(Index(k >> 32), Index(k & 0xffffffffu));
+      c.segment_facets[s].push_back({f, true, (count % 2) == 1});
+    }
+    for (Index s : inside_segments) {
+      if (s == kNoIndex || c.facet_has_segment(f, s)) continue;
+      c.segment_facets[s].push_back({f, false, false});
+    }
+
+    PlaneFrame& frame = c.frames[f];
+    Point3 n = facet_normal(plc, facet);
+    if (dot(n, n) == 0) {
+      throw InputError(ErrorCode::DegenerateFacet, "facet " + std::to_string(f) + " spans no plane", plc.name, 0,
+                       ElementIds{{}, {}, {f}, {}});
+    }
+    frame.origin = plc.vertices[verts.front()];
+    // Snap an axis-aligned normal (within rounding) to the exact axis so that grid inputs keep exact coordinates.
+    int axis = -1;
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(n[i]) > 1 - 1e-14) axis = i;
+    if (axis >= 0) {
+      const double s = n[axis] > 0 ? 1.0 : -1.0;
+      n = {0, 0, 0};
+      n[axis] = s;
+      frame.e1 = {0, 0, 0};
+      frame.e2 = {0, 0, 0};
+      frame.e1[(axis + 1) % 3] = 1;
+      frame.e2[(axis + 2) % 3] = 1;
+    } else {
+      const Point3 helper = std::abs(n[0]) < 0.6 ? Point3{1, 0, 0} : Point3{0, 1, 0};
+      frame.e1 = normalized(cross(helper, n));
+      frame.e2 = cross(n, frame.e1);
+    }
+    frame.normal = n;
+  }
+  for (auto& list : c.segment_facets)
+    std::sort(list.begin(), list.end(), [](const SegmentInFacet& x, const SegmentInFacet& y) { return x.facet < y.facet; });
+
+  // Acute input angles (Section 3.7 assumes none): segment-segment at a shared vertex, segment-facet at a shared
+  // vertex (segment not in the facet), facet-facet along a shared segment.
+  for (Index v = 0; v < nv; ++v) {
+    const auto& segs = c.vertex_segments[v];
+    auto direction = [&](Index s) {
+      const Segment& seg = c.segments[s];
+      return sub(plc.vertices[seg.a == v ? seg.b : seg.a], plc.vertices[v]);
+    };
+    bool acute = false;
+    for (std::size_t i = 0; i < segs.size() && !acute; ++i)
+      for (std::size_t j = i + 1; j < segs.size() && !acute; ++j)
+        if (angle_deg(direction(segs[i]), direction(segs[j])) < kAcuteDeg) acute = true;
+    for (std::size_t i = 0; i < segs.size() && !acute; ++i) {
+      const Point3 d = direction(segs[i]);
+      for (Index f : c.vertex_facets[v]) {
+        if (acute || c.facet_has_segment(f, segs[i])) continue;
+        // Angle between the segment and the facet at v: its elevation over the plane when it projects into the
+        // facet's (convex) corner at v, else the angle to the nearer corner edge.
+        const Point3& n = c.frames[f].normal;
+        const double h = dot(d, n);
+        const Point3 proj{d[0] - h * n[0], d[1] - h * n[1], d[2] - h * n[2]};
+        for (const auto& loop : plc.facets[f].polygons) {
+          if (loop.size() < 3) continue;
+          for (std::size_t k = 0; k < loop.size(); ++k) {
+            if (loop[k] != v) continue;
+            const Point3 p = sub(plc.vertices[loop[(k + loop.size() - 1) % loop.size()]], plc.vertices[v]);
+            const Point3 q = sub(plc.vertices[loop[(k + 1) % loop.size()]], plc.vertices[v]);
+            const bool inside = dot(cross(p, proj), cross(p, q)) >= 0 && dot(cross(proj, q), cross(p, q)) >= 0;
+            const double angle = inside ? std::abs(90.0 - angle_deg(d, n)) : std::min(angle_deg(d, p), angle_deg(d, q));
+            if (angle < kAcuteDeg) acute = true;
+          }
+        }
+      }
+    }
+    c.acute_vertex[v] = acute;
+  }
+  for (Index s = 0; s < c.segments.size(); ++s) {
+    const auto& fs = c.segment_facets[s];
+    if (fs.size() < 2) continue;
+    const Segment& seg = c.segments[s];
+    const Point3 a = plc.vertices[seg.a];
+    const Point3 dir = normalized(sub(plc.vertices[seg.b], a));
+    auto inward = [&](Index f) {
+      // Direction in the facet's plane, perpendicular to the segment, towards the facet's vertex centroid.
+      Point3 centroid{0, 0, 0};
+      for (Index v : c.facet_vertices[f])
+        for (int k = 0; k < 3; ++k) centroid[k] += plc.vertices[v][k] / double(c.facet_vertices[f].size());
+      Point3 d = sub(centroid, a);
+      const double t = dot(d, dir);
+      for (int k = 0; k < 3; ++k) d[k] -= t * dir[k];
+      return d;
+    };
+    for (std::size_t i = 0; i < fs.size(); ++i)
+      for (std::size_t j = i + 1; j < fs.size(); ++j)
+        if (angle_deg(inward(fs[i].facet), inward(fs[j].facet)) < kAcuteDeg) {
+          c.acute_vertex[seg.a] = 1;
+          c.acute_vertex[seg.b] = 1;
+        }
+  }
+  return c;
+}
+
+}  // namespace qualmesh::detail

@@ -1,0 +1,95 @@
+// Extraction (issue 3): the cells of the domain's regions become a TetMesh. Vertices are numbered in the engine's
+// vertex order (input vertices first, then Steiner points in insertion order), keeping only those used; tetrahedra
+// are positively oriented (CGAL cells are) and sorted by vertex ids, so the output is deterministic. Every face on
+// an input facet (domain boundary or internal facet) is listed once with the facet it lies on, oriented with its
+// normal pointing out of the tetrahedron it was taken from (for boundary faces: out of the domain).
+#include <algorithm>
+
+#include "refine/refine_state.h"
+
+namespace qualmesh::detail {
+
+TetMesh extract_mesh(MeshState& s) {
+  TetMesh mesh;
+  std::vector<Index> new_id(s.vertices.size(), kNoIndex);
+  struct Tet {
+    std::array<Index, 4> v;
+    int region;
+  };
+  std::vector<Tet> tets;
+  struct Face {
+    std::array<Index, 3> v;
+    int facet;
+  };
+  std::vector<Face> faces;
+  for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) {
+    const int region = c->info().region;
+    if (region < 0) continue;
+    Tet t;
+    for (int k = 0; k < 4; ++k) {
+      t.v[k] = c->vertex(k)->info();
+      new_id[t.v[k]] = 0;
+    }
+    t.region = region;
+    tets.push_back(t);
+    for (int i = 0; i < 4; ++i) {
+      const Ch3 n = c->neighbor(i);
+      const int other = n->info().region;
+      const Index facet = face_subfacet(s, c, i);
+      if (facet == kNoIndex && other == region) continue;
+      // Both sides inside the domain: take the face once, from the side with the smaller opposite vertex id.
+      if (other >= 0) {
+        const Index mine = c->vertex(i)->info();
+        const Index theirs = n->vertex(n->index(c))->info();
+        if (theirs < mine) continue;
+      }
+      Face f;
+      // CGAL cells are positively oriented, so (i+1, i+2, i+3) has its normal towards vertex i for odd i and away
+      // from it for even i; keep the outward orientation.
+      f.v = {c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(), c->vertex((i + 3) & 3)->info()};
+      if (i % 2 == 1) std::swap(f.v[1], f.v[2]);
+      f.facet = facet == kNoIndex ? -1 : int(facet);
+      faces.push_back(f);
+    }
+  }
+  Index next = 0;
+  for (Index v = 0; v < s.vertices.size(); ++v) {
+    if (new_id[v] == kNoIndex) continue;
+    new_id[v] = next++;
+    mesh.points.push_back(s.vertices[v].point);
+  }
+  for (Tet& t : tets)
+    for (Index& v : t.v) v = new_id[v];
+  for (Face& f : faces)
+    for (Index& v : f.v) v = new_id[v];
+  // Canonical order: rotate each tet so its smallest id comes first (an even permutation keeps the orientation).
+  for (Tet& t : tets) {
+    auto& v = t.v;
+    const int m = int(std::min_element(v.begin(), v.end()) - v.begin());
+    // Even permutations moving position m to 0.
+    if (m == 1) v = {v[1], v[0], v[3], v[2]};
+    else if (m == 2) v = {v[2], v[3], v[0], v[1]};
+    else if (m == 3) v = {v[3], v[2], v[1], v[0]};
+  }
+  std::sort(tets.begin(), tets.end(), [](const Tet& a, const Tet& b) { return a.v < b.v; });
+  for (Face& f : faces) {
+    auto& v = f.v;
+    const int m = int(std::min_element(v.begin(), v.end()) - v.begin());
+    std::rotate(v.begin(), v.begin() + m, v.end());
+  }
+  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.v < b.v; });
+  mesh.tets.reserve(tets.size());
+  mesh.tet_region.reserve(tets.size());
+  for (const Tet& t : tets) {
+    mesh.tets.push_back(t.v);
+    mesh.tet_region.push_back(s.regions[t.region].attribute);
+  }
+  for (const Face& f : faces) {
+    mesh.faces.push_back(f.v);
+    mesh.face_facet.push_back(f.facet);
+    mesh.face_marker.push_back(f.facet >= 0 ? s.plc->facets[f.facet].marker : 0);
+  }
+  return mesh;
+}
+
+}  // namespace qualmesh::detail

@@ -1,0 +1,116 @@
+// mesh_plc(): the stages of QUALMESH steps 1-2 (Cheng & Dey, Section 3.7) in order, timed and reported:
+//   Initial     the Delaunay (zero-weight regular) triangulation of the input vertices (step 1), the input complex
+//               and the subfacet triangulations;
+//   Boundary    Rules 1 and 2 until no subsegment or subfacet is encroached or missing (the boundary conforms);
+//   Regions     flood fill of the domain's regions (regions.cpp);
+//   Refinement  Rules 1-3 in priority order (refine_engine.cpp);
+//   Extraction  the TetMesh and its quality figures (extract.cpp).
+#include "qualmesh/mesher.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "qualmesh/quality.h"
+#include "refine/refine_state.h"
+
+namespace qualmesh {
+
+const char* to_string(MeshStage stage) {
+  switch (stage) {
+    case MeshStage::Initial: return "initial";
+    case MeshStage::Boundary: return "boundary";
+    case MeshStage::Refinement: return "refinement";
+    case MeshStage::Regions: return "regions";
+    case MeshStage::Extraction: return "extraction";
+  }
+  return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+void begin_stage(detail::MeshState& s, MeshStage stage) {
+  s.stage = stage;
+  if (s.progress) s.progress(ProgressEvent{stage, 0.0, s.tr.number_of_vertices()});
+}
+
+}  // namespace
+
+MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCallback& progress,
+                    const LogCallback& log) {
+  auto state = std::make_unique<detail::MeshState>();
+  detail::MeshState& s = *state;
+  s.plc = &plc;
+  s.options = options;
+  s.progress = progress;
+  s.log = log;
+  s.sq_radius_edge_bound = options.radius_edge_bound * options.radius_edge_bound;
+  s.sq_max_edge = options.max_edge_length > 0 ? options.max_edge_length * options.max_edge_length : 0;
+  s.max_volume = options.max_volume > 0 ? options.max_volume : 0;
+
+  MeshResult result;
+  auto t = Clock::now();
+  begin_stage(s, MeshStage::Initial);
+  s.complex = detail::build_input_complex(plc);
+  detail::insert_input_vertices(s);
+  detail::build_facet_meshes(s);
+  std::size_t num_acute = 0;
+  for (auto a : s.complex.acute_vertex) num_acute += a;
+  s.log_line("input: " + std::to_string(plc.vertices.size()) + " vertices, " +
+             std::to_string(s.complex.segments.size()) + " segments, " + std::to_string(plc.facets.size()) +
+             " facets, " + std::to_string(num_acute) + " apices of acute input angles");
+  s.stats.seconds_initial = seconds_since(t);
+
+  t = Clock::now();
+  begin_stage(s, MeshStage::Boundary);
+  detail::enqueue_initial_boundary(s);
+  detail::run_refinement(s, false);
+  s.stats.seconds_boundary = seconds_since(t);
+
+  if (!s.vertex_limit_reached) {
+    t = Clock::now();
+    begin_stage(s, MeshStage::Regions);
+    detail::compute_regions(s);
+    s.stats.seconds_regions = seconds_since(t);
+
+    t = Clock::now();
+    begin_stage(s, MeshStage::Refinement);
+    detail::enqueue_all_tets(s);
+    detail::run_refinement(s, true);
+    if (!s.region_pending.empty()) {
+      std::vector<detail::Ch3> assigned;
+      detail::flood_pending_regions(s, assigned);
+    }
+    s.stats.seconds_refinement = seconds_since(t);
+  } else {
+    detail::compute_regions(s);
+  }
+  if (s.vertex_limit_reached) {
+    result.status = MeshStatus::VertexLimitReached;
+    s.log_line("stopped: vertex limit " + std::to_string(options.max_vertices) + " reached");
+  }
+
+  t = Clock::now();
+  begin_stage(s, MeshStage::Extraction);
+  result.mesh = detail::extract_mesh(s);
+  MeshStats& st = s.stats;
+  st.num_tets = result.mesh.tets.size();
+  st.num_boundary_faces = result.mesh.faces.size();
+  st.max_radius_edge = 0;
+  st.min_dihedral_deg = result.mesh.tets.empty() ? 0 : 180;
+  for (const auto& tet : result.mesh.tets) {
+    const auto& p = result.mesh.points;
+    const TetQuality q = tet_quality(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]);
+    st.max_radius_edge = std::max(st.max_radius_edge, q.radius_edge);
+    st.min_dihedral_deg = std::min(st.min_dihedral_deg, q.min_dihedral_deg);
+  }
+  st.seconds_extraction = seconds_since(t);
+  if (s.progress) s.progress(ProgressEvent{MeshStage::Extraction, 1.0, s.tr.number_of_vertices()});
+  result.stats = st;
+  return result;
+}
+
+}  // namespace qualmesh

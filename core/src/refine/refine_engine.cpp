@@ -1,0 +1,578 @@
+// The refinement engine: step 2 of QUALMESH (Cheng & Dey, Section 3.7) without Rule 4 (weighted encroachment,
+// which belongs with pumping), in the paper's priority order:
+//   Rule 1: split an encroached subsegment (midpoint, or a concentric-shell point next to an acute apex);
+//   Rule 2: split an encroached subfacet at its circumcentre, choosing the subfacet that contains the projection
+//           of the encroaching vertex (Lemma 3.5); reject the circumcentre when it encroaches a subsegment and split
+//           that subsegment instead;
+//   Rule 3: insert the circumcentre of a tetrahedron of radius-edge ratio above rho0 (or too large for the size
+//           field), unless it encroaches a subsegment (split it, Rule 1) or a subfacet (split the one containing
+//           its projection, Rule 2).
+// One queue per rule (CGAL Mesh_3's Mesher_level chain, flattened): a rule runs only when the queues of the rules
+// before it are empty. Entries are validated when popped (the subsegment still consecutive, the subfacet still in
+// its facet's triangulation, the tetrahedron still a cell), so stale entries cost nothing.
+//
+// Encroachment is found locally. Gabriel property: a subsegment (subfacet) is missing from the Delaunay
+// triangulation only if its closed diametral ball holds a vertex, and a present one whose diametral ball holds a
+// vertex has such a vertex among the apices of its incident cells (for a subfacet, the two cells on its sides). A
+// new point p can only encroach or remove elements that are faces or edges of cells in p's conflict zone (cells
+// whose circumsphere holds p: any sphere through a subfacet on p's side contains the part of its diametral ball on
+// that side). So after each insertion only the conflict zone's edges and faces, and the new subsegments and
+// subfacets (the 2D star of the new vertex), are checked; nothing is ever scanned globally after the start.
+//
+// Acute input angles (beyond the paper, which assumes none): concentric shells for Rule 1 (subsegments.cpp), and
+// Rule 3 does not split a tetrahedron whose shortest edge joins vertices on two input elements that meet at an
+// acute apex (that edge is forced by the small angle; splitting it would cascade). MeshOptions::max_vertices is
+// the last-resort stop.
+#include <algorithm>
+#include <cmath>
+
+#include "qualmesh/error.h"
+#include "refine/refine_state.h"
+
+namespace qualmesh::detail {
+
+namespace {
+
+const Kernel& kernel() {
+  static const Kernel k;
+  return k;
+}
+
+bool strictly_encroaches(const KPoint3& a, const KPoint3& b, const KPoint3& p) {
+  return kernel().side_of_bounded_sphere_3_object()(a, b, p) == CGAL::ON_BOUNDED_SIDE;
+}
+bool strictly_encroaches(const KPoint3& a, const KPoint3& b, const KPoint3& c, const KPoint3& p) {
+  return kernel().side_of_bounded_sphere_3_object()(a, b, c, p) == CGAL::ON_BOUNDED_SIDE;
+}
+
+bool is_infinite(const MeshState& s, Vh3 v) { return v == s.tr.infinite_vertex(); }
+
+// --- Encroachment of one element, from the triangulation around it -----------------------------------------------
+
+// True when subsegment (u, v) is missing from the triangulation or a vertex lies strictly inside its diametral
+// ball; `encroacher` gets that vertex (kNoIndex when missing).
+bool subsegment_encroached(const MeshState& s, Index u, Index v, Index* encroacher) {
+  const Vh3 hu = s.vertices[u].handle, hv = s.vertices[v].handle;
+  Ch3 c;
+  int i = 0, j = 0;
+  *encroacher = kNoIndex;
+  if (!s.tr.is_edge(hu, hv, c, i, j)) return true;
+  const KPoint3 a = s.kpoint(u), b = s.kpoint(v);
+  auto cc = s.tr.incident_cells(c, i, j), done = cc;
+  do {
+    for (int k = 0; k < 4; ++k) {
+      const Vh3 w = cc->vertex(k);
+      if (w == hu || w == hv || is_infinite(s, w)) continue;
+      if (strictly_encroaches(a, b, s.kpoint(w->info()))) {
+        *encroacher = w->info();
+        return true;
+      }
+    }
+  } while (++cc != done);
+  return false;
+}
+
+bool subfacet_encroached(const MeshState& s, const std::array<Index, 3>& abc, Index* encroacher) {
+  const Vh3 ha = s.vertices[abc[0]].handle, hb = s.vertices[abc[1]].handle, hc = s.vertices[abc[2]].handle;
+  Ch3 c;
+  int i = 0, j = 0, k = 0;
+  *encroacher = kNoIndex;
+  if (!s.tr.is_facet(ha, hb, hc, c, i, j, k)) return true;
+  const int l = 6 - i - j - k;
+  const Ch3 n = c->neighbor(l);
+  const Vh3 apices[2] = {c->vertex(l), n->vertex(n->index(c))};
+  const KPoint3 a = s.kpoint(abc[0]), b = s.kpoint(abc[1]), cc = s.kpoint(abc[2]);
+  for (const Vh3 w : apices) {
+    if (is_infinite(s, w)) continue;
+    if (strictly_encroaches(a, b, cc, s.kpoint(w->info()))) {
+      *encroacher = w->info();
+      return true;
+    }
+  }
+  return false;
+}
+
+// --- Conflict zones --------------------------------------------------------------------------------------------
+
+struct ConflictZone {
+  std::vector<Ch3> cells;
+  std::vector<Facet3> boundary;
+  std::vector<Facet3> internal;
+};
+
+// Subsegments (segment, u, v) and subfacets (facet, a, b, c) that are edges / faces of the conflict zone's cells.
+struct Candidates {
+  std::vector<std::array<Index, 3>> subsegments;
+  std::vector<std::array<Index, 4>> subfacets;
+};
+
+// The cells whose circumsphere holds p (the cells p's insertion destroys); false when p coincides with a vertex.
+bool find_conflict_zone(MeshState& s, const KPoint3& p, Ch3 hint, ConflictZone& cz) {
+  RegularTriangulation3::Locate_type lt;
+  int li = 0, lj = 0;
+  const KWeightedPoint3 wp(p, 0);
+  Ch3 c = s.tr.locate(wp, lt, li, lj, hint);
+  if (lt == RegularTriangulation3::VERTEX) return false;
+  cz.cells.clear();
+  cz.boundary.clear();
+  cz.internal.clear();
+  s.tr.find_conflicts(wp, c, std::back_inserter(cz.boundary), std::back_inserter(cz.cells),
+                      std::back_inserter(cz.internal));
+  return !cz.cells.empty() && !cz.boundary.empty();
+}
+
+void collect_candidates(const MeshState& s, const ConflictZone& cz, Candidates& out) {
+  out.subsegments.clear();
+  out.subfacets.clear();
+  for (const Ch3& c : cz.cells) {
+    Index ids[4];
+    for (int k = 0; k < 4; ++k) ids[k] = c->vertex(k)->info();
+    for (int a = 0; a < 4; ++a) {
+      if (ids[a] == kNoIndex) continue;
+      for (int b = a + 1; b < 4; ++b) {
+        if (ids[b] == kNoIndex) continue;
+        const Index seg = subsegment_of(s, ids[a], ids[b]);
+        if (seg != kNoIndex) out.subsegments.push_back({seg, std::min(ids[a], ids[b]), std::max(ids[a], ids[b])});
+      }
+    }
+    for (int i = 0; i < 4; ++i) {
+      std::array<Index, 3> f{ids[(i + 1) & 3], ids[(i + 2) & 3], ids[(i + 3) & 3]};
+      if (f[0] == kNoIndex || f[1] == kNoIndex || f[2] == kNoIndex) continue;
+      const Index facet = subfacet_of(s, f[0], f[1], f[2]);
+      if (facet == kNoIndex) continue;
+      std::sort(f.begin(), f.end());
+      out.subfacets.push_back({facet, f[0], f[1], f[2]});
+    }
+  }
+  std::sort(out.subsegments.begin(), out.subsegments.end());
+  out.subsegments.erase(std::unique(out.subsegments.begin(), out.subsegments.end()), out.subsegments.end());
+  std::sort(out.subfacets.begin(), out.subfacets.end());
+  out.subfacets.erase(std::unique(out.subfacets.begin(), out.subfacets.end()), out.subfacets.end());
+}
+
+// --- Quality and size of tetrahedra (Rule 3) ---------------------------------------------------------------------
+
+double sq_dist(const Point3& a, const Point3& b) {
+  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+}
+
+enum class TetVerdict { Good, Skinny, TooLarge, ForcedBySmallAngle };
+
+TetVerdict judge_tet(MeshState& s, Ch3 c) {
+  Index ids[4];
+  for (int k = 0; k < 4; ++k) ids[k] = c->vertex(k)->info();
+  double sq_min = std::numeric_limits<double>::infinity(), sq_max = 0;
+  int emin_a = 0, emin_b = 1;
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) {
+      const double d = sq_dist(s.point(ids[a]), s.point(ids[b]));
+      if (d < sq_min) sq_min = d, emin_a = a, emin_b = b;
+      sq_max = std::max(sq_max, d);
+    }
+  const KPoint3 p0 = s.kpoint(ids[0]), p1 = s.kpoint(ids[1]), p2 = s.kpoint(ids[2]), p3 = s.kpoint(ids[3]);
+  if (s.sq_max_edge > 0 && sq_max > s.sq_max_edge) return TetVerdict::TooLarge;
+  double max_volume = s.max_volume;
+  const int region = c->info().region;
+  if (region >= 0 && s.regions[region].max_volume > 0)
+    max_volume = max_volume > 0 ? std::min(max_volume, s.regions[region].max_volume) : s.regions[region].max_volume;
+  if (max_volume > 0 && CGAL::volume(p0, p1, p2, p3) > max_volume) return TetVerdict::TooLarge;
+  const double sq_r = CGAL::squared_radius(p0, p1, p2, p3);
+  if (!(sq_r > s.sq_radius_edge_bound * sq_min)) return TetVerdict::Good;
+  // Shortest edge forced by an acute input angle: both ends on input elements that meet at an acute apex.
+  const Index u = ids[emin_a], w = ids[emin_b];
+  if (s.vertices[u].kind != VertexKind::Volume && s.vertices[w].kind != VertexKind::Volume) {
+    std::vector<Index> su, sw;
+    const std::vector<Index>* eu = host_element_vertices(s, u, su);
+    const std::vector<Index>* ew = host_element_vertices(s, w, sw);
+    if (eu && ew && s.complex.elements_meet_at_acute_vertex(*eu, *ew)) return TetVerdict::ForcedBySmallAngle;
+  }
+  return TetVerdict::Skinny;
+}
+
+// --- Insertion --------------------------------------------------------------------------------------------------
+
+Index add_vertex(MeshState& s, const Point3& p, VertexKind kind, Index host, double t = 0) {
+  VertexRecord r;
+  r.point = p;
+  r.kind = kind;
+  r.host = host;
+  r.t = t;
+  s.vertices.push_back(r);
+  return Index(s.vertices.size() - 1);
+}
+
+void enqueue_subsegment_if_encroached(MeshState& s, Index seg, Index u, Index v) {
+  Index enc;
+  if (subsegment_encroached(s, u, v, &enc)) s.subsegment_queue.push_back({seg, u, v});
+}
+
+void enqueue_subfacet_if_encroached(MeshState& s, Index facet, const std::array<Index, 3>& abc) {
+  Index enc;
+  if (subfacet_encroached(s, abc, &enc)) s.subfacet_queue.push_back({facet, abc, false, {}});
+}
+
+void enqueue_tet_if_bad(MeshState& s, Ch3 c) {
+  if (s.tr.is_infinite(c) || c->info().region < 0) return;
+  const TetVerdict verdict = judge_tet(s, c);
+  if (verdict == TetVerdict::Skinny || verdict == TetVerdict::TooLarge)
+    s.tet_queue.push_back({{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()}, 0});
+}
+
+// Inserts vertex `id` into the hole of conflict zone `cz`, then checks everything the insertion may have
+// encroached or removed: the candidates (edges and faces of the destroyed cells), the new subsegments and the new
+// subfacets (2D stars of the new vertex). `region`: region of the new cells (kUnknownRegion for boundary points).
+void insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& cand, int region) {
+  const KWeightedPoint3 wp(s.kpoint(id), 0);
+  // Remember, across each outer face of the hole, the region of the destroyed cell (the new cell's guess).
+  struct Outer {
+    Ch3 neighbor;
+    int mirror;
+    int region;
+  };
+  std::vector<Outer> outer;
+  if (region < 0 && s.regions_known) {
+    outer.reserve(cz.boundary.size());
+    for (const Facet3& f : cz.boundary) {
+      const Ch3 n = f.first->neighbor(f.second);
+      const int r = f.first->info().region != kUnknownRegion ? f.first->info().region : f.first->info().guess;
+      outer.push_back({n, n->index(f.first), r});
+    }
+  }
+  const Vh3 vh = s.tr.insert_in_hole(wp, cz.cells.begin(), cz.cells.end(), cz.boundary.front().first,
+                                     cz.boundary.front().second);
+  vh->info() = id;
+  s.vertices[id].handle = vh;
+  ++s.stats.num_steiner_vertices;
+  for (const Outer& o : outer) o.neighbor->neighbor(o.mirror)->info().guess = o.region;
+  if (s.tr.number_of_vertices() >= s.options.max_vertices) s.vertex_limit_reached = true;
+
+  VertexRecord& r = s.vertices[id];
+  std::vector<std::array<Index, 3>> new_faces;
+  std::vector<Index> face_facets;
+  if (r.kind == VertexKind::Segment) {
+    for (const SegmentInFacet& sf : s.complex.segment_facets[r.host]) {
+      const std::size_t before = new_faces.size();
+      insert_into_facet(s, sf.facet, id, &new_faces);
+      face_facets.resize(new_faces.size(), sf.facet);
+      (void)before;
+    }
+  } else if (r.kind == VertexKind::Facet) {
+    insert_into_facet(s, r.host, id, &new_faces);
+    face_facets.resize(new_faces.size(), r.host);
+  }
+
+  // Cells of the star: region and Rule 3.
+  std::vector<Ch3> star;
+  s.tr.incident_cells(vh, std::back_inserter(star));
+  for (const Ch3& c : star) {
+    if (s.tr.is_infinite(c)) {
+      c->info().region = s.regions_known ? kOutsideRegion : kUnknownRegion;
+      continue;
+    }
+    c->info().region = region;
+  }
+  if (region >= 0) {
+    for (const Ch3& c : star) enqueue_tet_if_bad(s, c);
+  } else if (s.regions_known) {
+    s.region_pending.push_back(id);
+  }
+
+  // Encroachment by the new vertex, or removal, of the conflict zone's subsegments and subfacets.
+  const KPoint3 p = s.kpoint(id);
+  for (const auto& e : cand.subsegments) {
+    if (subsegment_of(s, e[1], e[2]) != e[0]) continue;
+    Ch3 c;
+    int i = 0, j = 0;
+    if (!s.tr.is_edge(s.vertices[e[1]].handle, s.vertices[e[2]].handle, c, i, j) ||
+        strictly_encroaches(s.kpoint(e[1]), s.kpoint(e[2]), p))
+      s.subsegment_queue.push_back({e[0], e[1], e[2]});
+  }
+  for (const auto& f : cand.subfacets) {
+    if (!is_subfacet(s, f[0], f[1], f[2], f[3])) continue;
+    Ch3 c;
+    int i = 0, j = 0, k = 0;
+    if (!s.tr.is_facet(s.vertices[f[1]].handle, s.vertices[f[2]].handle, s.vertices[f[3]].handle, c, i, j, k) ||
+        strictly_encroaches(s.kpoint(f[1]), s.kpoint(f[2]), s.kpoint(f[3]), p))
+      s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, false, {}});
+  }
+  // New subsegments and subfacets.
+  if (r.kind == VertexKind::Segment) {
+    enqueue_subsegment_if_encroached(s, r.host, r.prev, id);
+    enqueue_subsegment_if_encroached(s, r.host, id, r.next);
+  }
+  for (std::size_t n = 0; n < new_faces.size(); ++n) enqueue_subfacet_if_encroached(s, face_facets[n], new_faces[n]);
+}
+
+Ch3 hint_of(const MeshState& s, Index v) { return s.vertices[v].handle->cell(); }
+
+// --- Rule 1 -----------------------------------------------------------------------------------------------------
+
+void split_subsegment(MeshState& s, Index seg, Index u, Index v) {
+  const double t = subsegment_split_parameter(s, seg, u, v);
+  const Segment& sg = s.complex.segments[seg];
+  const Point3& a = s.point(sg.a);
+  const Point3& b = s.point(sg.b);
+  const Point3 p{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+  ConflictZone cz;
+  if (!find_conflict_zone(s, to_kpoint(p), hint_of(s, u), cz)) return;  // underflow: nothing to split
+  Candidates cand;
+  collect_candidates(s, cz, cand);
+  const Index w = add_vertex(s, p, VertexKind::Segment, seg, t);
+  link_segment_vertex(s, seg, u, v, w);
+  ++s.stats.num_rule1_insertions;
+  insert_vertex(s, w, cz, cand, kUnknownRegion);
+}
+
+void process_subsegment(MeshState& s, const SubsegmentEntry& e) {
+  if (subsegment_of(s, e.u, e.v) != e.segment) return;  // stale
+  Index enc;
+  if (!e.forced && !subsegment_encroached(s, e.u, e.v, &enc)) return;
+  split_subsegment(s, e.segment, e.u, e.v);
+}
+
+// --- Rule 2 -----------------------------------------------------------------------------------------------------
+
+void check_new_subfacets(MeshState& s, Index facet, const std::vector<std::array<Index, 3>>& faces) {
+  for (const auto& f : faces) enqueue_subfacet_if_encroached(s, facet, f);
+}
+
+// Splits subfacet abc of `facet` at its circumcentre, unless that centre encroaches a subsegment (then those
+// subsegments are queued for Rule 1 and the centre is rejected).
+void split_subfacet(MeshState& s, Index facet, const std::array<Index, 3>& abc) {
+  const KPoint3 a = s.kpoint(abc[0]), b = s.kpoint(abc[1]), c = s.kpoint(abc[2]);
+  const KPoint3 center = CGAL::circumcenter(a, b, c);
+  ConflictZone cz;
+  if (!find_conflict_zone(s, center, hint_of(s, abc[0]), cz)) return;
+  Candidates cand;
+  collect_candidates(s, cz, cand);
+  bool rejected = false;
+  for (const auto& e : cand.subsegments) {
+    if (strictly_encroaches(s.kpoint(e[1]), s.kpoint(e[2]), center)) {
+      s.subsegment_queue.push_back({e[0], e[1], e[2], true});
+      rejected = true;
+    }
+  }
+  const Point3 p = to_point3(center);
+  if (!rejected && !facet_point_in_domain(s, facet, p)) {
+    // The centre left the facet without encroaching a subsegment in floating point: split the facet's boundary
+    // subsegments of this subfacet instead (Rule 1), which is what the exact geometry asks for.
+    for (int i = 0; i < 3; ++i) {
+      const Index u = abc[i], v = abc[(i + 1) % 3];
+      const Index seg = subsegment_of(s, u, v);
+      if (seg != kNoIndex) {
+        s.subsegment_queue.push_back({seg, std::min(u, v), std::max(u, v), true});
+        rejected = true;
+      }
+    }
+    if (!rejected) return;
+  }
+  if (rejected) {
+    ++s.stats.num_rejected_circumcenters;
+    return;
+  }
+  const Index w = add_vertex(s, p, VertexKind::Facet, facet);
+  ++s.stats.num_rule2_insertions;
+  insert_vertex(s, w, cz, cand, kUnknownRegion);
+}
+
+void process_subfacet(MeshState& s, const SubfacetEntry& e) {
+  const auto& abc = e.vertices;
+  if (!is_subfacet(s, e.facet, abc[0], abc[1], abc[2])) return;  // stale
+  Index enc = kNoIndex;
+  bool encroached = subfacet_encroached(s, abc, &enc);
+  const bool missing = encroached && enc == kNoIndex;
+  const KPoint3 a = s.kpoint(abc[0]), b = s.kpoint(abc[1]), c = s.kpoint(abc[2]);
+  if (!encroached && e.has_point && strictly_encroaches(a, b, c, to_kpoint(e.point))) encroached = true;
+  if (!encroached && !e.forced) return;
+  if (missing) {
+    // Cocircular subfacets: the 3D triangulation may have chosen the other diagonal; both are Delaunay.
+    std::vector<std::array<Index, 3>> flipped;
+    if (flip_subfacet_to_match(s, e.facet, abc, &flipped)) {
+      check_new_subfacets(s, e.facet, flipped);
+      return;
+    }
+  }
+  // Lemma 3.5: among the subfacets the encroacher encroaches, split the one containing its projection.
+  std::array<Index, 3> target = abc;
+  const bool has_encroacher = enc != kNoIndex || e.has_point;
+  if (has_encroacher) {
+    const Point3 q = enc != kNoIndex ? s.point(enc) : e.point;
+    if (auto h = subfacet_containing_projection(s, e.facet, q)) {
+      if (strictly_encroaches(s.kpoint((*h)[0]), s.kpoint((*h)[1]), s.kpoint((*h)[2]), to_kpoint(q))) target = *h;
+    }
+  }
+  split_subfacet(s, e.facet, target);
+}
+
+// --- Rule 3 -----------------------------------------------------------------------------------------------------
+
+void process_tet(MeshState& s, const TetEntry& e) {
+  Ch3 c;
+  const auto& v = e.vertices;
+  if (!s.tr.is_cell(s.vertices[v[0]].handle, s.vertices[v[1]].handle, s.vertices[v[2]].handle,
+                    s.vertices[v[3]].handle, c))
+    return;  // stale
+  const int region = c->info().region;
+  if (region < 0) return;
+  const TetVerdict verdict = judge_tet(s, c);
+  if (verdict == TetVerdict::ForcedBySmallAngle) {
+    ++s.stats.num_skipped_small_angle;
+    return;
+  }
+  if (verdict == TetVerdict::Good) return;
+  const KPoint3 z = CGAL::circumcenter(s.kpoint(v[0]), s.kpoint(v[1]), s.kpoint(v[2]), s.kpoint(v[3]));
+  ConflictZone cz;
+  if (!find_conflict_zone(s, z, c, cz)) return;
+  Candidates cand;
+  collect_candidates(s, cz, cand);
+  // Rule 3, first bullet: z encroaches subsegments -> Rule 1.
+  bool rejected = false;
+  for (const auto& seg : cand.subsegments) {
+    if (strictly_encroaches(s.kpoint(seg[1]), s.kpoint(seg[2]), z)) {
+      s.subsegment_queue.push_back({seg[0], seg[1], seg[2], true});
+      rejected = true;
+    }
+  }
+  if (!rejected) {
+    // Second bullet: z encroaches subfacets (or its insertion would remove one) -> Rule 2 on the subfacet that
+    // holds z's projection (process_subfacet applies Lemma 3.5 with the point z).
+    std::vector<std::array<Index, 4>> destroyed;
+    for (const Facet3& f : cz.internal) {
+      Index ids[3];
+      for (int k = 0; k < 3; ++k) ids[k] = f.first->vertex((f.second + 1 + k) & 3)->info();
+      if (ids[0] == kNoIndex || ids[1] == kNoIndex || ids[2] == kNoIndex) continue;
+      const Index facet = subfacet_of(s, ids[0], ids[1], ids[2]);
+      if (facet != kNoIndex) destroyed.push_back({facet, ids[0], ids[1], ids[2]});
+    }
+    for (const auto& f : cand.subfacets) {
+      if (strictly_encroaches(s.kpoint(f[1]), s.kpoint(f[2]), s.kpoint(f[3]), z)) destroyed.push_back(f);
+    }
+    for (const auto& f : destroyed) {
+      s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, true, to_point3(z), true});
+      rejected = true;
+    }
+  }
+  if (!rejected) {
+    // Without an encroached element the conflict zone cannot cross the boundary, so it lies in one region.
+    for (const Ch3& cell : cz.cells) {
+      if (cell->info().region != region) {
+        rejected = true;  // numerically inconsistent; leave this tetrahedron
+        break;
+      }
+    }
+    if (rejected) return;
+    const Index w = add_vertex(s, to_point3(z), VertexKind::Volume, kNoIndex);
+    ++s.stats.num_rule3_insertions;
+    insert_vertex(s, w, cz, cand, region);
+    return;
+  }
+  ++s.stats.num_rejected_circumcenters;
+  if (e.attempts < 8) {
+    TetEntry again = e;
+    ++again.attempts;
+    s.tet_queue.push_back(again);
+  }
+}
+
+void report(MeshState& s, double fraction) {
+  if (!s.progress) return;
+  ProgressEvent event;
+  event.stage = s.stage;
+  event.fraction = std::max(0.0, std::min(1.0, fraction));
+  event.num_vertices = s.tr.number_of_vertices();
+  s.progress(event);
+}
+
+}  // namespace
+
+Index face_subfacet(const MeshState& s, Ch3 c, int i) {
+  Index ids[3];
+  for (int k = 0; k < 3; ++k) {
+    ids[k] = c->vertex((i + 1 + k) & 3)->info();
+    if (ids[k] == kNoIndex) return kNoIndex;
+  }
+  return subfacet_of(s, ids[0], ids[1], ids[2]);
+}
+
+void insert_input_vertices(MeshState& s) {
+  const Plc& plc = *s.plc;
+  s.tr.infinite_vertex()->info() = kNoIndex;
+  s.vertices.clear();
+  s.vertices.reserve(plc.vertices.size() * 4);
+  Vh3 hint;
+  for (Index v = 0; v < plc.vertices.size(); ++v) {
+    const Index id = add_vertex(s, plc.vertices[v], VertexKind::Input, v);
+    const std::size_t before = s.tr.number_of_vertices();
+    const Vh3 vh = s.tr.insert(KWeightedPoint3(s.kpoint(id), 0), hint);
+    if (s.tr.number_of_vertices() == before) {
+      throw InputError(ErrorCode::DuplicateVertex,
+                       "vertices " + std::to_string(vh->info()) + " and " + std::to_string(v) + " coincide",
+                       plc.name, 0, ElementIds{{vh->info(), v}, {}, {}, {}});
+    }
+    vh->info() = id;
+    s.vertices[id].handle = vh;
+    hint = vh;
+  }
+  if (s.tr.dimension() < 3)
+    throw InputError(ErrorCode::Empty, "the input vertices span no volume", plc.name);
+  s.chains.assign(s.complex.segments.size(), SegmentChain{});
+  s.stats.num_input_vertices = plc.vertices.size();
+}
+
+void enqueue_initial_boundary(MeshState& s) {
+  for (Index seg = 0; seg < s.complex.segments.size(); ++seg) {
+    const Segment& sg = s.complex.segments[seg];
+    enqueue_subsegment_if_encroached(s, seg, std::min(sg.a, sg.b), std::max(sg.a, sg.b));
+  }
+  std::vector<std::array<Index, 3>> faces;
+  for (Index f = 0; f < s.facets.size(); ++f) {
+    faces.clear();
+    collect_subfacets(s, f, faces);
+    check_new_subfacets(s, f, faces);
+  }
+}
+
+void enqueue_all_tets(MeshState& s) {
+  for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) enqueue_tet_if_bad(s, c);
+}
+
+void run_refinement(MeshState& s, bool with_rule3) {
+  std::size_t steps = 0;
+  std::vector<Ch3> assigned;
+  while (!s.vertex_limit_reached) {
+    if (++steps % 4096 == 0) {
+      const double queued = double(s.subsegment_queue.size() + s.subfacet_queue.size() + s.tet_queue.size());
+      const double done = double(s.stats.num_steiner_vertices);
+      report(s, done / (done + queued + 1));
+    }
+    if (!s.subsegment_queue.empty()) {
+      const SubsegmentEntry e = s.subsegment_queue.front();
+      s.subsegment_queue.pop_front();
+      process_subsegment(s, e);
+      continue;
+    }
+    if (!s.subfacet_queue.empty()) {
+      const SubfacetEntry e = s.subfacet_queue.front();
+      s.subfacet_queue.pop_front();
+      process_subfacet(s, e);
+      continue;
+    }
+    if (!with_rule3) break;
+    if (!s.region_pending.empty()) {
+      assigned.clear();
+      flood_pending_regions(s, assigned);
+      for (const Ch3& c : assigned) enqueue_tet_if_bad(s, c);
+      continue;
+    }
+    if (!s.tet_queue.empty()) {
+      const TetEntry e = s.tet_queue.front();
+      s.tet_queue.pop_front();
+      process_tet(s, e);
+      continue;
+    }
+    break;
+  }
+  report(s, 1.0);
+}
+
+}  // namespace qualmesh::detail

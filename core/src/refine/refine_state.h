@@ -1,0 +1,166 @@
+// State of the refinement engine (paper Section 3.7, steps 1-2): the one Regular_triangulation_3, the vertex
+// records with their symbolic host (input vertex, point of a segment with parameter t, point of a facet with local
+// coordinates (u, v), or a volume point), the subsegment chains (Section 3.2), the subfacet triangulations
+// (Section 3.2), the regions, and the three work queues of Rules 1, 2 and 3.
+//
+// Stage files: complex.cpp (input), subsegments.cpp (chains, Rule 1 split points), subfacets.cpp (per-facet 2D
+// triangulations, Lemma 3.5 projection), refine_engine.cpp (Rules 1-3, local encroachment), regions.cpp (flood
+// fill), extract.cpp (TetMesh), mesher.cpp (orchestration, public API).
+#pragma once
+
+#include <array>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "cgal_types.h"
+#include "qualmesh/mesher.h"
+#include "refine/complex.h"
+
+namespace qualmesh::detail {
+
+enum class VertexKind : std::uint8_t { Input, Segment, Facet, Volume };
+
+struct VertexRecord {
+  Point3 point{};
+  VertexKind kind = VertexKind::Input;
+  Index host = kNoIndex;  // segment id (Segment), facet id (Facet); input vertex id for Input
+  double t = 0;           // Segment: parameter along the host segment, 0 at its `a`, 1 at its `b`
+  Index prev = kNoIndex;  // Segment: neighbours along the host segment (an endpoint id or a Segment vertex id)
+  Index next = kNoIndex;
+  Vh3 handle;
+};
+
+// One input facet's subfacets: the Delaunay triangulation of the vertices on the facet (Section 3.2) in the facet's
+// plane frame, constrained by its subsegments so that its in-domain triangles stay defined while subsegments are
+// encroached. `handles` maps a vertex id to its 2D vertex.
+struct FacetMesh {
+  Cdt2 cdt;
+  std::unordered_map<Index, Vh2> handle_map;
+  Vh2 find(Index vertex) const {
+    auto it = handle_map.find(vertex);
+    return it == handle_map.end() ? Vh2() : it->second;
+  }
+};
+
+struct SegmentChain {
+  Index first = kNoIndex;  // first Steiner vertex after `a` (or `b` when none)
+  Index last = kNoIndex;   // last Steiner vertex before `b` (or `a` when none)
+};
+
+struct SubsegmentEntry {
+  Index segment;
+  Index u, v;  // consecutive vertices on the segment
+  bool forced = false;  // a rejected circumcentre encroaches it: split even if no vertex does
+};
+
+struct SubfacetEntry {
+  Index facet;
+  std::array<Index, 3> vertices;
+  bool has_point = false;  // a rejected circumcentre encroaches it (Rule 3)
+  Point3 point{};
+  bool forced = false;  // split even when no vertex encroaches it (Rule 3 rejection)
+};
+
+struct TetEntry {
+  std::array<Index, 4> vertices;
+  int attempts = 0;  // times its circumcentre was rejected
+};
+
+struct RegionInfo {
+  int attribute = 0;
+  double max_volume = 0;  // <= 0: none
+};
+
+struct MeshState {
+  const Plc* plc = nullptr;
+  MeshOptions options;
+  // Derived from the options.
+  double sq_max_edge = 0;  // 0 = none
+  double max_volume = 0;   // 0 = none
+  double sq_radius_edge_bound = 4;
+
+  InputComplex complex;
+  RegularTriangulation3 tr;
+  std::vector<VertexRecord> vertices;
+  std::vector<SegmentChain> chains;
+  std::vector<FacetMesh> facets;
+  std::vector<RegionInfo> regions;  // per component id
+  bool regions_known = false;
+  std::vector<Index> region_pending;  // boundary vertices inserted since the last flood
+
+  std::deque<SubsegmentEntry> subsegment_queue;  // Rule 1
+  std::deque<SubfacetEntry> subfacet_queue;      // Rule 2
+  std::deque<TetEntry> tet_queue;                // Rule 3
+
+  MeshStats stats;
+  ProgressCallback progress;
+  LogCallback log;
+  MeshStage stage = MeshStage::Initial;
+  bool vertex_limit_reached = false;
+
+  void log_line(const std::string& line) const {
+    if (log) log(line);
+  }
+  const Point3& point(Index v) const { return vertices[v].point; }
+  KPoint3 kpoint(Index v) const { return to_kpoint(vertices[v].point); }
+};
+
+// --- complex / vertices (subsegments.cpp) ---
+// Is vertex v on segment s (symbolically)?
+bool vertex_on_segment(const MeshState& s, Index v, Index segment);
+// Is vertex v on facet f (symbolically)?
+bool vertex_on_facet(const MeshState& s, Index v, Index facet);
+// The vertex after / before v along segment `segment` (v must be on it), kNoIndex at the end.
+Index next_on_segment(const MeshState& s, Index segment, Index v);
+// The segment of which (u, v) is a subsegment (consecutive vertices), or kNoIndex.
+Index subsegment_of(const MeshState& s, Index u, Index v);
+// Rule 1 split point of subsegment (u, v) of `segment`: its midpoint, or Shewchuk's concentric-shell point when an
+// end is an acute input vertex. Returns the parameter t along the segment.
+double subsegment_split_parameter(const MeshState& s, Index segment, Index u, Index v);
+// Links a new Segment vertex w between u and v on `segment`.
+void link_segment_vertex(MeshState& s, Index segment, Index u, Index v, Index w);
+// Sorted input vertex ids of the input element hosting a vertex, for adjacency tests (empty for volume vertices).
+const std::vector<Index>* host_element_vertices(const MeshState& s, Index v, std::vector<Index>& scratch);
+
+// --- subfacets (subfacets.cpp) ---
+void build_facet_meshes(MeshState& s);
+// Facets that contain all three vertices, checked against their 2D triangulations: the facet of which (a, b, c) is
+// an in-domain subfacet, or kNoIndex.
+Index subfacet_of(const MeshState& s, Index a, Index b, Index c);
+// Inserts vertex w (on facet f, or on a segment of f) into f's 2D triangulation; returns the new subfacets.
+void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::array<Index, 3>>* new_faces);
+// Is (a, b, c) an in-domain subfacet of f?
+bool is_subfacet(const MeshState& s, Index facet, Index a, Index b, Index c);
+// The in-domain subfacet of f containing the projection of `p` (Lemma 3.5), if any.
+std::optional<std::array<Index, 3>> subfacet_containing_projection(const MeshState& s, Index facet, const Point3& p);
+// Is the 2D location of point p (on f's plane) inside f's domain?
+bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p);
+// Tries to flip 2D edges of subfacet (a, b, c) so that f's subfacets match the 3D triangulation's choice among
+// cocircular configurations; appends the new subfacets and returns true when it flipped.
+bool flip_subfacet_to_match(MeshState& s, Index facet, const std::array<Index, 3>& abc,
+                            std::vector<std::array<Index, 3>>* new_faces);
+// All in-domain subfacets of f.
+void collect_subfacets(const MeshState& s, Index facet, std::vector<std::array<Index, 3>>& out);
+
+// --- refinement (refine_engine.cpp) ---
+void insert_input_vertices(MeshState& s);
+void enqueue_initial_boundary(MeshState& s);
+// Drains Rules 1-2 (stage Boundary) or Rules 1-3 (stage Refinement).
+void run_refinement(MeshState& s, bool with_rule3);
+void enqueue_all_tets(MeshState& s);
+// Which facet (if any) the triangulation face (c, i) is a subfacet of.
+Index face_subfacet(const MeshState& s, Ch3 c, int i);
+
+// --- regions (regions.cpp) ---
+void compute_regions(MeshState& s);
+// Floods the cells created by boundary insertions since the last flood; calls `on_cell` for each assigned cell.
+void flood_pending_regions(MeshState& s, std::vector<Ch3>& assigned);
+
+// --- extraction (extract.cpp) ---
+TetMesh extract_mesh(MeshState& s);
+
+}  // namespace qualmesh::detail

@@ -1,0 +1,284 @@
+// Subfacets (paper Section 3.2): for each input facet, the two-dimensional Delaunay triangulation of the vertices
+// on it, in an orthonormal frame of its plane, constrained by its subsegments (so that the facet's domain stays
+// defined while some subsegment is encroached; once none is, it equals the unconstrained Delaunay triangulation of
+// Section 3.2). Its in-domain triangles are the subfacets; one that is not a face of the 3D triangulation is seen
+// as missing and refined (Rule 2) or, when the 3D triangulation chose the other diagonal of a cocircular
+// quadrilateral, flipped to match (both are Delaunay).
+//
+// In/out (plc.h): a triangle is in the facet when it is covered by an odd number of the facet's closed polygons and
+// no facet hole point reaches it without crossing a polygon edge. After an insertion only the star of the new
+// vertex changes, and each new triangle inherits from the old triangle across its edge opposite the new vertex.
+// Lemma 3.5 (projection): subfacet_containing_projection() locates the orthogonal projection of a point in the 2D
+// triangulation.
+#include <algorithm>
+#include <unordered_set>
+
+#include "qualmesh/error.h"
+#include "refine/refine_state.h"
+
+namespace qualmesh::detail {
+
+namespace {
+
+KPoint2 local_point(const MeshState& s, Index facet, const Point3& p) {
+  const auto uv = s.complex.frames[facet].to_local(p);
+  return KPoint2(uv[0], uv[1]);
+}
+
+struct EdgeFlags {
+  bool polygon_edge = false;
+  bool toggles = false;
+};
+
+// Flags of the 2D edge (u, v) of facet f: on a closed polygon of f, and toggling the in/out parity.
+EdgeFlags edge_flags(const MeshState& s, Index facet, const Fh2& fh, int i) {
+  EdgeFlags flags;
+  if (!fh->is_constrained(i)) return flags;
+  const Index u = fh->vertex(Cdt2::ccw(i))->info();
+  const Index v = fh->vertex(Cdt2::cw(i))->info();
+  const Index segment = subsegment_of(s, u, v);
+  if (segment == kNoIndex) return flags;
+  if (const SegmentInFacet* sf = s.complex.segment_in_facet(segment, facet)) {
+    flags.polygon_edge = sf->polygon_edge;
+    flags.toggles = sf->toggles;
+  }
+  return flags;
+}
+
+void mark_domain(const MeshState& s, Index facet, Cdt2& cdt) {
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = FaceInfo2{};
+  // Parity: breadth-first from the infinite faces, toggling across polygon edges of odd coverage.
+  std::vector<Fh2> stack;
+  std::unordered_set<Fh2> seen;
+  auto key_seen = [&](Fh2 f) { return seen.count(f) != 0; };
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f)
+    if (cdt.is_infinite(f)) {
+      seen.insert(f);
+      stack.push_back(f);
+    }
+  while (!stack.empty()) {
+    Fh2 f = stack.back();
+    stack.pop_back();
+    for (int i = 0; i < 3; ++i) {
+      Fh2 g = f->neighbor(i);
+      if (key_seen(g)) continue;
+      seen.insert(g);
+      const EdgeFlags flags = edge_flags(s, facet, f, i);
+      g->info().parity = f->info().parity != flags.toggles;
+      stack.push_back(g);
+    }
+  }
+  // Facet hole points: everything reached without crossing a polygon edge.
+  for (const Point3& h : s.plc->facets[facet].holes) {
+    Fh2 start = cdt.locate(local_point(s, facet, h));
+    if (start == Fh2() || cdt.is_infinite(start) || start->info().hole) continue;
+    start->info().hole = true;
+    stack.assign(1, start);
+    while (!stack.empty()) {
+      Fh2 f = stack.back();
+      stack.pop_back();
+      for (int i = 0; i < 3; ++i) {
+        Fh2 g = f->neighbor(i);
+        if (cdt.is_infinite(g) || g->info().hole || edge_flags(s, facet, f, i).polygon_edge) continue;
+        g->info().hole = true;
+        stack.push_back(g);
+      }
+    }
+  }
+}
+
+// Recomputes the in/out flags of the star of vh (the only faces an insertion or flip creates).
+void update_star(MeshState& s, Index facet, Cdt2& cdt, Vh2 vh, std::vector<std::array<Index, 3>>* new_faces) {
+  auto fc = cdt.incident_faces(vh), done = fc;
+  if (fc == nullptr) return;
+  do {
+    Fh2 f = fc;
+    if (cdt.is_infinite(f)) {
+      f->info() = FaceInfo2{};
+      continue;
+    }
+    const int i = f->index(vh);
+    Fh2 g = f->neighbor(i);
+    if (cdt.is_infinite(g)) {
+      f->info() = FaceInfo2{};
+      f->info().parity = edge_flags(s, facet, f, i).toggles;
+    } else {
+      const EdgeFlags flags = edge_flags(s, facet, f, i);
+      f->info().parity = g->info().parity != flags.toggles;
+      f->info().hole = flags.polygon_edge ? false : g->info().hole;
+    }
+    if (new_faces && f->info().in_domain())
+      new_faces->push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+  } while (++fc != done);
+}
+
+}  // namespace
+
+void build_facet_meshes(MeshState& s) {
+  const Plc& plc = *s.plc;
+  s.facets.clear();
+  s.facets.resize(plc.facets.size());
+  std::vector<std::vector<Index>> facet_segments(plc.facets.size());
+  for (Index seg = 0; seg < s.complex.segments.size(); ++seg)
+    for (const SegmentInFacet& sf : s.complex.segment_facets[seg]) facet_segments[sf.facet].push_back(seg);
+  for (Index f = 0; f < plc.facets.size(); ++f) {
+    FacetMesh& fm = s.facets[f];
+    fm.cdt.infinite_vertex()->info() = kNoIndex;
+    Fh2 hint;
+    for (Index v : s.complex.facet_vertices[f]) {
+      const std::size_t before = fm.cdt.number_of_vertices();
+      Vh2 vh = fm.cdt.insert(local_point(s, f, s.point(v)), hint);
+      if (fm.cdt.number_of_vertices() == before) {
+        throw InputError(ErrorCode::DuplicateVertex,
+                         "vertices " + std::to_string(vh->info()) + " and " + std::to_string(v) +
+                             " coincide in the plane of facet " + std::to_string(f),
+                         plc.name, 0, ElementIds{{vh->info(), v}, {}, {f}, {}});
+      }
+      vh->info() = v;
+      fm.handle_map[v] = vh;
+      hint = vh->face();
+    }
+    for (Index seg : facet_segments[f]) {
+      const Segment& sg = s.complex.segments[seg];
+      try {
+        fm.cdt.insert_constraint(fm.handle_map.at(sg.a), fm.handle_map.at(sg.b));
+      } catch (const std::exception&) {
+        throw InputError(ErrorCode::Intersection,
+                         "segment " + std::to_string(seg) + " crosses another element of facet " + std::to_string(f),
+                         plc.name, 0, ElementIds{{sg.a, sg.b}, {seg}, {f}, {}});
+      }
+    }
+    mark_domain(s, f, fm.cdt);
+  }
+}
+
+bool is_subfacet(const MeshState& s, Index facet, Index a, Index b, Index c) {
+  const FacetMesh& fm = s.facets[facet];
+  const Vh2 va = fm.find(a), vb = fm.find(b), vc = fm.find(c);
+  if (va == Vh2() || vb == Vh2() || vc == Vh2()) return false;
+  Fh2 fh;
+  return fm.cdt.is_face(va, vb, vc, fh) && fh->info().in_domain();
+}
+
+Index subfacet_of(const MeshState& s, Index a, Index b, Index c) {
+  const Index abc[3] = {a, b, c};
+  for (Index v : abc)
+    if (s.vertices[v].kind == VertexKind::Volume) return kNoIndex;
+  auto try_facet = [&](Index f) {
+    for (Index v : abc)
+      if (!vertex_on_facet(s, v, f)) return false;
+    return is_subfacet(s, f, a, b, c);
+  };
+  for (Index v : abc) {
+    const VertexRecord& r = s.vertices[v];
+    if (r.kind == VertexKind::Facet) return try_facet(r.host) ? r.host : kNoIndex;
+  }
+  for (Index v : abc) {
+    const VertexRecord& r = s.vertices[v];
+    if (r.kind == VertexKind::Segment) {
+      for (const SegmentInFacet& sf : s.complex.segment_facets[r.host])
+        if (try_facet(sf.facet)) return sf.facet;
+      return kNoIndex;
+    }
+  }
+  for (Index f : s.complex.vertex_facets[a])
+    if (try_facet(f)) return f;
+  return kNoIndex;
+}
+
+void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::array<Index, 3>>* new_faces) {
+  FacetMesh& fm = s.facets[facet];
+  const VertexRecord& r = s.vertices[w];
+  const KPoint2 p = local_point(s, facet, r.point);
+  Vh2 vh;
+  if (r.kind == VertexKind::Segment) {
+    // Symbolically on the constrained edge between its chain neighbours: split that edge.
+    const Vh2 a = fm.find(r.prev), b = fm.find(r.next);
+    Fh2 fh;
+    int i = 0;
+    if (a != Vh2() && b != Vh2() && fm.cdt.is_edge(a, b, fh, i)) vh = fm.cdt.insert(p, Cdt2::EDGE, fh, i);
+  }
+  if (vh == Vh2()) {
+    Fh2 hint;
+    const auto it = fm.handle_map.find(r.kind == VertexKind::Segment ? r.prev : kNoIndex);
+    if (it != fm.handle_map.end()) hint = it->second->face();
+    vh = fm.cdt.insert(p, hint);
+  }
+  vh->info() = w;
+  fm.handle_map[w] = vh;
+  update_star(s, facet, fm.cdt, vh, new_faces);
+}
+
+std::optional<std::array<Index, 3>> subfacet_containing_projection(const MeshState& s, Index facet, const Point3& p) {
+  const FacetMesh& fm = s.facets[facet];
+  Cdt2::Locate_type lt;
+  int li = 0;
+  Fh2 fh = fm.cdt.locate(local_point(s, facet, p), lt, li);
+  if (fh == Fh2() || fm.cdt.is_infinite(fh) || !fh->info().in_domain()) return std::nullopt;
+  return std::array<Index, 3>{fh->vertex(0)->info(), fh->vertex(1)->info(), fh->vertex(2)->info()};
+}
+
+bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p) {
+  const FacetMesh& fm = s.facets[facet];
+  Cdt2::Locate_type lt;
+  int li = 0;
+  Fh2 fh = fm.cdt.locate(local_point(s, facet, p), lt, li);
+  if (fh == Fh2()) return false;
+  if (!fm.cdt.is_infinite(fh) && fh->info().in_domain()) return true;
+  if (lt == Cdt2::EDGE) {
+    Fh2 g = fh->neighbor(li);
+    return !fm.cdt.is_infinite(g) && g->info().in_domain();
+  }
+  return false;
+}
+
+bool flip_subfacet_to_match(MeshState& s, Index facet, const std::array<Index, 3>& abc,
+                            std::vector<std::array<Index, 3>>* new_faces) {
+  FacetMesh& fm = s.facets[facet];
+  const Vh2 va = fm.find(abc[0]), vb = fm.find(abc[1]), vc = fm.find(abc[2]);
+  Fh2 fh;
+  if (va == Vh2() || vb == Vh2() || vc == Vh2() || !fm.cdt.is_face(va, vb, vc, fh)) return false;
+  for (int i = 0; i < 3; ++i) {
+    if (fh->is_constrained(i)) continue;
+    Fh2 g = fh->neighbor(i);
+    if (fm.cdt.is_infinite(g) || !g->info().in_domain()) continue;
+    const Vh2 c = fh->vertex(i), x = fh->vertex(Cdt2::ccw(i)), y = fh->vertex(Cdt2::cw(i));
+    const Vh2 d = g->vertex(fm.cdt.mirror_index(fh, i));
+    const Vh3 c3 = s.vertices[c->info()].handle, d3 = s.vertices[d->info()].handle;
+    const Vh3 x3 = s.vertices[x->info()].handle, y3 = s.vertices[y->info()].handle;
+    Ch3 cell;
+    int i0 = 0, i1 = 0, i2 = 0;
+    if (!s.tr.is_edge(c3, d3, cell, i0, i1)) continue;
+    if (!s.tr.is_facet(c3, d3, x3, cell, i0, i1, i2) || !s.tr.is_facet(c3, d3, y3, cell, i0, i1, i2)) continue;
+    // The quadrilateral must be strictly convex for the flip (cd crosses xy).
+    const auto o1 = CGAL::orientation(x->point(), y->point(), c->point());
+    const auto o2 = CGAL::orientation(x->point(), y->point(), d->point());
+    const auto o3 = CGAL::orientation(c->point(), d->point(), x->point());
+    const auto o4 = CGAL::orientation(c->point(), d->point(), y->point());
+    if (o1 == CGAL::COLLINEAR || o2 == CGAL::COLLINEAR || o1 == o2 || o3 == CGAL::COLLINEAR ||
+        o4 == CGAL::COLLINEAR || o3 == o4)
+      continue;
+    const FaceInfo2 info = fh->info();
+    fm.cdt.flip(fh, i);
+    // Both faces of the flip now hold c and d.
+    auto fc = fm.cdt.incident_faces(c), done = fc;
+    do {
+      Fh2 f = fc;
+      if (!fm.cdt.is_infinite(f) && f->has_vertex(d)) {
+        f->info() = info;
+        if (new_faces) new_faces->push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+      }
+    } while (++fc != done);
+    ++s.stats.num_subfacet_flips;
+    return true;
+  }
+  return false;
+}
+
+void collect_subfacets(const MeshState& s, Index facet, std::vector<std::array<Index, 3>>& out) {
+  const FacetMesh& fm = s.facets[facet];
+  for (auto f = fm.cdt.finite_faces_begin(); f != fm.cdt.finite_faces_end(); ++f)
+    if (f->info().in_domain()) out.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+}
+
+}  // namespace qualmesh::detail
