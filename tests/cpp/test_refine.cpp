@@ -195,6 +195,97 @@ TEST_P(RefineRho, LShape) {
   check_mesh_properties(plc, r, GetParam(), {3.0, 2 * 3.0 + 8.0});
 }
 
+TEST_P(RefineRho, BoxWithBoxHole) {
+  PlcBuilder b;
+  b.box({0, 0, 0}, {3, 3, 3});
+  b.box({1, 1, 1}, {2, 2, 2});
+  b.plc.holes.push_back({1.5, 1.5, 1.5});
+  qualmesh::MeshOptions o;
+  o.radius_edge_bound = GetParam();
+  const auto r = qualmesh::mesh_plc(b.plc, o);
+  check_mesh_properties(b.plc, r, GetParam(), {26.0, 60.0});
+}
+
+TEST_P(RefineRho, StackedBoxesWithRegions) {
+  PlcBuilder b;
+  b.box({0, 0, 0}, {1, 1, 1});
+  b.box({0, 0, 1}, {1, 1, 2});
+  b.plc.regions.push_back({{0.5, 0.5, 0.5}, 7, 0});
+  b.plc.regions.push_back({{0.5, 0.5, 1.5}, 9, 0.01});
+  ASSERT_EQ(b.plc.facets.size(), 11u);
+  qualmesh::MeshOptions o;
+  o.radius_edge_bound = GetParam();
+  const auto r = qualmesh::mesh_plc(b.plc, o);
+  check_mesh_properties(b.plc, r, GetParam(), {2.0, 11.0});
+  const auto& m = r.mesh;
+  ASSERT_EQ(m.tet_region.size(), m.tets.size());
+  for (std::size_t i = 0; i < m.tets.size(); ++i) {
+    double z = 0;
+    for (Index v : m.tets[i]) z += m.points[v][2] / 4;
+    EXPECT_EQ(m.tet_region[i], z < 1 ? 7 : 9) << "tet " << i;
+    if (m.tet_region[i] == 9) {
+      const auto& t = m.tets[i];
+      EXPECT_LE(qualmesh::tet_signed_volume(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]), 0.01);
+    }
+  }
+  // The internal facet (z = 1) is listed once.
+  std::size_t internal = 0;
+  for (std::size_t i = 0; i < m.faces.size(); ++i) {
+    bool on = true;
+    for (Index v : m.faces[i]) on = on && m.points[v][2] == 1.0;
+    internal += on;
+  }
+  EXPECT_GE(internal, 2u);
+}
+
+TEST_P(RefineRho, GridAlignedCluster) {
+  // 3 x 2 x 2 unit boxes sharing facets: cospherical everywhere.
+  PlcBuilder b;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 2; ++k) b.box({double(i), double(j), double(k)}, {i + 1.0, j + 1.0, k + 1.0});
+  qualmesh::MeshOptions o;
+  o.radius_edge_bound = GetParam();
+  const auto r = qualmesh::mesh_plc(b.plc, o);
+  check_mesh_properties(b.plc, r, GetParam(), {12.0, double(b.plc.facets.size())});
+}
+
 INSTANTIATE_TEST_SUITE_P(Bounds, RefineRho, ::testing::Values(2.0, 1.5));
+
+TEST(Refine, SizeLimitsAndDeterminism) {
+  const Plc plc = l_shape();
+  qualmesh::MeshOptions o;
+  o.max_volume = 0.002;
+  const auto a = qualmesh::mesh_plc(plc, o);
+  const auto b = qualmesh::mesh_plc(plc, o);
+  check_mesh_properties(plc, a, 2.0, {3.0, 14.0});
+  EXPECT_GT(a.mesh.tets.size(), 1500u);
+  EXPECT_EQ(a.mesh.points, b.mesh.points);
+  EXPECT_EQ(a.mesh.tets, b.mesh.tets);
+  EXPECT_EQ(a.mesh.faces, b.mesh.faces);
+  EXPECT_EQ(a.mesh.face_facet, b.mesh.face_facet);
+  for (const auto& t : a.mesh.tets)
+    EXPECT_LE(qualmesh::tet_signed_volume(a.mesh.points[t[0]], a.mesh.points[t[1]], a.mesh.points[t[2]],
+                                          a.mesh.points[t[3]]),
+              0.002);
+}
+
+TEST(Refine, ProgressAndStats) {
+  PlcBuilder b;
+  b.box({0, 0, 0}, {2, 1, 1});
+  std::size_t events = 0;
+  bool saw_extraction = false;
+  const auto r = qualmesh::mesh_plc(b.plc, {}, [&](const qualmesh::ProgressEvent& e) {
+    ++events;
+    EXPECT_GE(e.fraction, 0.0);
+    EXPECT_LE(e.fraction, 1.0);
+    saw_extraction = saw_extraction || e.stage == qualmesh::MeshStage::Extraction;
+  });
+  EXPECT_GT(events, 0u);
+  EXPECT_TRUE(saw_extraction);
+  EXPECT_EQ(r.stats.num_input_vertices, 8u);
+  EXPECT_EQ(r.stats.num_tets, r.mesh.tets.size());
+  EXPECT_EQ(r.mesh.points.size(), 8u + r.stats.num_steiner_vertices);
+}
 
 }  // namespace
