@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   register_info_command(app, exit_code);
   register_check_command(app, exit_code);
   register_convert_command(app, exit_code);
+  register_mesh_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

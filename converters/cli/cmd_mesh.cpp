@@ -1,0 +1,83 @@
+// `qualmesh mesh IN -o OUT [--radius-edge 2.0] [--max-edge L] [--max-volume V]`: Delaunay refinement of the input
+// PLC (Cheng & Dey, QUALMESH steps 1-2: Rules 1-3), written to OUT in the format its extension names. A progress bar
+// on stderr when stderr is a terminal (silent otherwise), then a short summary on stdout: counts, quality figures
+// and time per stage. Exit 2 for bad input or usage; nothing is written then.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "cli_common.h"
+#include "qualmesh/error.h"
+#include "qualmesh/mesh_io.h"
+#include "qualmesh/mesher.h"
+
+namespace qualmesh::cli {
+
+namespace {
+
+struct MeshArgs {
+  std::string input;
+  std::string output;
+  InputOptions input_options;
+  MeshOptions options;
+  bool verbose = false;
+};
+
+int run_mesh(const MeshArgs& args) {
+  const Plc plc = load_input(args.input, args.input_options);
+  const bool tty = isatty(fileno(stderr)) != 0;
+  ProgressCallback progress;
+  if (tty) {
+    progress = [](const ProgressEvent& e) {
+      const int width = 30;
+      const int filled = int(e.fraction * width + 0.5);
+      std::fprintf(stderr, "\r%-10s [%.*s%*s] %3d%% %zu vertices", to_string(e.stage), filled,
+                   "##############################", width - filled, "", int(e.fraction * 100 + 0.5),
+                   e.num_vertices);
+      std::fflush(stderr);
+    };
+  }
+  LogCallback log;
+  if (args.verbose) log = [](const std::string& line) { std::cerr << "qualmesh: " << line << "\n"; };
+  const MeshResult result = mesh_plc(plc, args.options, progress, log);
+  if (tty) std::fprintf(stderr, "\r%70s\r", "");
+  write_tet_mesh(result.mesh, args.output);
+  const MeshStats& st = result.stats;
+  std::printf("input:       %zu vertices, %zu facets\n", plc.vertices.size(), plc.facets.size());
+  std::printf("output:      %zu vertices (%zu Steiner), %zu tetrahedra, %zu boundary faces\n",
+              result.mesh.points.size(), st.num_steiner_vertices, st.num_tets, st.num_boundary_faces);
+  std::printf("insertions:  rule 1 %zu, rule 2 %zu, rule 3 %zu; %zu centres rejected; %zu small-angle skips\n",
+              st.num_rule1_insertions, st.num_rule2_insertions, st.num_rule3_insertions,
+              st.num_rejected_circumcenters, st.num_skipped_small_angle);
+  std::printf("quality:     max radius-edge %.4g (bound %.4g), min dihedral %.4g deg\n", st.max_radius_edge,
+              args.options.radius_edge_bound, st.min_dihedral_deg);
+  std::printf("time (s):    initial %.3f, boundary %.3f, regions %.3f, refinement %.3f, extraction %.3f\n",
+              st.seconds_initial, st.seconds_boundary, st.seconds_regions, st.seconds_refinement,
+              st.seconds_extraction);
+  if (result.status == MeshStatus::VertexLimitReached)
+    std::printf("status:      stopped at the vertex limit (%zu)\n", args.options.max_vertices);
+  std::fflush(stdout);
+  return kExitOk;
+}
+
+}  // namespace
+
+void register_mesh_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<MeshArgs>();
+  CLI::App* command = app.add_subcommand("mesh", "Quality tetrahedral mesh of a PLC (Delaunay refinement, Rules 1-3)");
+  command->add_option("input", args->input, "Input model (.poly .smesh .off .stl .obj .mesh)")->required();
+  command->add_option("-o,--output", args->output, "Output mesh (.vtu .node .msh .mesh .inp)")->required();
+  add_input_options(*command, args->input_options);
+  command->add_option("--radius-edge", args->options.radius_edge_bound,
+                      "Radius-edge ratio bound rho0 (default 2.0)");
+  command->add_option("--max-edge", args->options.max_edge_length, "Longest edge allowed (default: none)");
+  command->add_option("--max-volume", args->options.max_volume, "Largest tetrahedron volume (default: none)");
+  command->add_option("--max-vertices", args->options.max_vertices, "Safety stop (default 50,000,000)");
+  command->add_flag("-v,--verbose", args->verbose, "Log the stages on stderr");
+  command->callback([args, &exit_code] { exit_code = run_mesh(*args); });
+}
+
+}  // namespace qualmesh::cli
