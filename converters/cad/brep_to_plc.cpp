@@ -41,6 +41,10 @@
 namespace qualmesh::cad {
 namespace {
 
+// Largest distance of a planar face's polygon vertices from their mean plane, relative to the model's diagonal, for
+// the face to become one polygonal facet (ten times below validate_plc's default planarity tolerance).
+constexpr double kPlanarityTolerance = 1e-7;
+
 Point3 to_point(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 
 double distance(const Point3& a, const Point3& b) {
@@ -248,6 +252,27 @@ class PlcBuilder {
       facet.polygons.push_back(std::move(loop));
     }
     if (facet.polygons.empty()) return false;
+    // A plane face whose edges stray from its plane (vertex tolerances of 1e-2 occur in STEP files) is not a planar
+    // polygon; its triangles are used instead, each planar by construction.
+    const gp_Vec normal = newell_normal(facet.polygons.front());
+    if (normal.Magnitude() <= 0) return false;
+    const gp_Dir axis(normal);
+    const Point3& origin = model_.plc.vertices[facet.polygons.front().front()];
+    double centre = 0;
+    std::size_t count = 0;
+    for (const auto& loop : facet.polygons)
+      for (Index v : loop) {
+        const Point3& p = model_.plc.vertices[v];
+        centre += (p[0] - origin[0]) * axis.X() + (p[1] - origin[1]) * axis.Y() + (p[2] - origin[2]) * axis.Z();
+        ++count;
+      }
+    centre /= static_cast<double>(count);
+    for (const auto& loop : facet.polygons)
+      for (Index v : loop) {
+        const Point3& p = model_.plc.vertices[v];
+        double h = (p[0] - origin[0]) * axis.X() + (p[1] - origin[1]) * axis.Y() + (p[2] - origin[2]) * axis.Z();
+        if (std::fabs(h - centre) > kPlanarityTolerance * diagonal_) return false;
+      }
     model_.plc.facets.push_back(std::move(facet));
     return true;
   }
