@@ -420,6 +420,24 @@ void process_tet(MeshState& s, const TetEntry& e) {
     return;
   }
   if (verdict == TetVerdict::Good) return;
+  // A flat tetrahedron whose four vertices lie on one facet (near-cocircular points of a tilted facet, which
+  // rounding made slightly non-coplanar): its circumcentre is meaningless; split its subfacets instead (Rule 2).
+  {
+    Index common = kNoIndex;
+    for (int i = 0; i < 4 && common == kNoIndex; ++i) {
+      const Index facet = face_subfacet(s, c, i);
+      if (facet != kNoIndex && vertex_on_facet(s, v[i], facet)) common = facet;
+    }
+    if (common != kNoIndex) {
+      for (int i = 0; i < 4; ++i) {
+        std::array<Index, 3> f{c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(),
+                               c->vertex((i + 3) & 3)->info()};
+        if (is_subfacet(s, common, f[0], f[1], f[2])) s.subfacet_queue.push_back({common, f, false, {}, true});
+      }
+      if (e.attempts < 8) s.tet_queue.push_back({e.vertices, e.attempts + 1});
+      return;
+    }
+  }
   const KPoint3 z = CGAL::circumcenter(s.kpoint(v[0]), s.kpoint(v[1]), s.kpoint(v[2]), s.kpoint(v[3]));
   ConflictZone cz;
   if (!find_conflict_zone(s, z, c, cz)) return;
