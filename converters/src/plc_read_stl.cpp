@@ -1,6 +1,7 @@
 // STL surface reader, ASCII and binary. Binary is told from ASCII by the file size alone (84 + 50 n bytes, n the
 // little-endian count at bytes 80..83), never by the word "solid": many binary writers start their 80-byte header
-// with "solid" (e.g. Solid Edge). Every triangle becomes a facet; vertices are merged by exact coordinates.
+// with "solid" (e.g. Solid Edge). A file of another size is ASCII when it starts with "solid" and holds no NUL byte;
+// otherwise it is a binary file of wrong size (truncated or with a corrupt count). Every triangle becomes a facet; vertices are merged by exact coordinates.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -157,7 +158,8 @@ Plc read_stl(const std::string& path, const ReadOptions& options) {
       if (count == 0) throw InputError(ErrorCode::Empty, "the binary STL file holds 0 triangles", path);
       return finish_surface(read_binary(data, path), path, options);
     }
-    if (!starts_with_solid(data)) {
+    // Not binary by size. ASCII STL starts with "solid" and holds no NUL byte (a binary header or float does).
+    if (!starts_with_solid(data) || data.find('\0') != std::string::npos) {
       throw InputError(ErrorCode::Parse,
                        "binary STL of wrong size: the header announces " + std::to_string(count) + " triangles (" +
                            std::to_string(expected) + " bytes) but the file has " + std::to_string(data.size()) +
