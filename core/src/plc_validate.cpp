@@ -51,7 +51,7 @@ bool check_indices(const Plc& plc, ProblemSink& sink) {
       if (v < nv) continue;
       ok = false;
       ElementIds ids;
-      ids.vertices = {v};
+      ids.vertices = std::vector<Index>{v};
       sink.add(ErrorCode::IndexOutOfRange,
                "explicit segment " + str(s) + " refers to vertex " + str(v) + ", but there are " + str(nv) +
                    " vertices",
@@ -64,8 +64,8 @@ bool check_indices(const Plc& plc, ProblemSink& sink) {
         if (v < nv) continue;
         ok = false;
         ElementIds ids;
-        ids.vertices = {v};
-        ids.facets = {static_cast<Index>(f)};
+        ids.vertices = std::vector<Index>{v};
+        ids.facets = std::vector<Index>{static_cast<Index>(f)};
         sink.add(ErrorCode::IndexOutOfRange,
                  "facet " + str(f) + " refers to vertex " + str(v) + ", but there are " + str(nv) + " vertices",
                  ids);
@@ -81,7 +81,7 @@ bool check_finite(const Plc& plc, ProblemSink& sink) {
     if (is_finite(plc.vertices[v])) continue;
     ok = false;
     ElementIds ids;
-    ids.vertices = {static_cast<Index>(v)};
+    ids.vertices = std::vector<Index>{static_cast<Index>(v)};
     sink.add(ErrorCode::NonFinite, "vertex " + str(v) + " has a non-finite coordinate " +
                                        detail::format_point(plc.vertices[v]), ids);
   }
@@ -90,7 +90,7 @@ bool check_finite(const Plc& plc, ProblemSink& sink) {
       if (is_finite(plc.facets[f].holes[h])) continue;
       ok = false;
       ElementIds ids;
-      ids.facets = {static_cast<Index>(f)};
+      ids.facets = std::vector<Index>{static_cast<Index>(f)};
       sink.add(ErrorCode::NonFinite, "hole point " + str(h) + " of facet " + str(f) + " is not finite", ids);
     }
   }
@@ -127,7 +127,7 @@ std::vector<Index> check_duplicates(const Plc& plc, ProblemSink& sink) {
     if (plc.vertices[prev] != plc.vertices[cur]) continue;
     representative[cur] = representative[prev];
     ElementIds ids;
-    ids.vertices = {representative[prev], cur};
+    ids.vertices = std::vector<Index>{representative[prev], cur};
     sink.add(ErrorCode::DuplicateVertex,
              "vertices " + str(representative[prev]) + " and " + str(cur) + " are at the same position " +
                  detail::format_point(plc.vertices[cur]),
@@ -140,7 +140,7 @@ void check_degenerate_segments(const Plc& plc, ProblemSink& sink) {
   for (std::size_t s = 0; s < plc.segments.size(); ++s) {
     if (plc.segments[s].a != plc.segments[s].b) continue;
     ElementIds ids;
-    ids.vertices = {plc.segments[s].a};
+    ids.vertices = std::vector<Index>{plc.segments[s].a};
     sink.add(ErrorCode::DegenerateSegment,
              "explicit segment " + str(s) + " has both ends at vertex " + str(plc.segments[s].a), ids);
   }
@@ -148,8 +148,8 @@ void check_degenerate_segments(const Plc& plc, ProblemSink& sink) {
     for (const auto& loop : plc.facets[f].polygons) {
       if (loop.size() != 2 || loop[0] != loop[1]) continue;
       ElementIds ids;
-      ids.vertices = {loop[0]};
-      ids.facets = {static_cast<Index>(f)};
+      ids.vertices = std::vector<Index>{loop[0]};
+      ids.facets = std::vector<Index>{static_cast<Index>(f)};
       sink.add(ErrorCode::DegenerateSegment,
                "a segment of facet " + str(f) + " has both ends at vertex " + str(loop[0]), ids);
     }
@@ -160,7 +160,7 @@ void check_degenerate_segments(const Plc& plc, ProblemSink& sink) {
 bool check_facet_loops(const Plc& plc, Index f, bool coordinates_ok, ProblemSink& sink) {
   const Facet& facet = plc.facets[f];
   ElementIds ids;
-  ids.facets = {f};
+  ids.facets = std::vector<Index>{f};
   bool has_polygon = false;
   for (std::size_t k = 0; k < facet.polygons.size(); ++k) {
     const auto& loop = facet.polygons[k];
@@ -171,7 +171,7 @@ bool check_facet_loops(const Plc& plc, Index f, bool coordinates_ok, ProblemSink
     auto repeat = std::adjacent_find(sorted.begin(), sorted.end());
     if (repeat != sorted.end()) {
       ElementIds with_vertex = ids;
-      with_vertex.vertices = {*repeat};
+      with_vertex.vertices = std::vector<Index>{*repeat};
       const std::size_t distinct = static_cast<std::size_t>(
           std::distance(sorted.begin(), std::unique(sorted.begin(), sorted.end())));
       sink.add(ErrorCode::DegenerateFacet,
@@ -248,8 +248,8 @@ bool check_closed(const Plc& plc, const ValidateOptions& options, ProblemSink& s
   for (const auto& [key, use] : rims) {
     const Index a = static_cast<Index>(key >> 32), b = static_cast<Index>(key & 0xffffffffu);
     ElementIds ids;
-    ids.vertices = {a, b};
-    ids.facets = {use.first_facet};
+    ids.vertices = std::vector<Index>{a, b};
+    ids.facets = std::vector<Index>{use.first_facet};
     sink.add(ErrorCode::OpenBoundary,
              "edge (" + str(a) + ", " + str(b) + ") of facet " + str(use.first_facet) +
                  " is on no other facet: the boundary is not closed",
@@ -299,7 +299,7 @@ ValidationReport validate_plc(const Plc& plc, const ValidateOptions& options) {
       if (!check_facet_loops(plc, f, finite_ok, sink) || !finite_ok) continue;
       const Facet& facet = plc.facets[f];
       ElementIds ids;
-      ids.facets = {f};
+      ids.facets = std::vector<Index>{f};
       const auto frame = detail::compute_facet_frame(plc.vertices, facet);
       if (!frame) {
         sink.add(ErrorCode::DegenerateFacet, "facet " + str(f) + " has zero area (all its vertices are collinear)",
@@ -315,7 +315,7 @@ ValidationReport validate_plc(const Plc& plc, const ValidateOptions& options) {
         }
       }
       if (worst > tolerance) {
-        ids.vertices = {worst_vertex};
+        ids.vertices = std::vector<Index>{worst_vertex};
         char text[200];
         std::snprintf(text, sizeof text,
                       "facet %u is not planar: vertex %u is %.3g from the facet's plane (tolerance %.3g = %.3g of "

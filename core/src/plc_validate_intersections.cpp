@@ -147,7 +147,7 @@ class IntersectionChecker {
     if (!bad) return;
     reported_facets_.insert(pair_key(a.owner, b.owner));
     ElementIds ids;
-    ids.facets = {std::min(a.owner, b.owner), std::max(a.owner, b.owner)};
+    ids.facets = std::vector<Index>{std::min(a.owner, b.owner), std::max(a.owner, b.owner)};
     sink_.add(ErrorCode::Intersection,
               "facets " + std::to_string(ids.facets[0]) + " and " + std::to_string(ids.facets[1]) +
                   " intersect (not in a shared vertex or edge)" + how,
@@ -186,9 +186,9 @@ class IntersectionChecker {
     if (!bad) return;
     reported_segment_facets_.insert(key);
     ElementIds ids;
-    ids.segments = {s.owner};
-    ids.facets = {t.owner};
-    ids.vertices = {seg.a, seg.b};
+    ids.segments = std::vector<Index>{s.owner};
+    ids.facets = std::vector<Index>{t.owner};
+    ids.vertices = std::vector<Index>{seg.a, seg.b};
     sink_.add(ErrorCode::Intersection,
               "segment " + std::to_string(s.owner) + " (vertices " + std::to_string(seg.a) + ", " +
                   std::to_string(seg.b) + ") and facet " + std::to_string(t.owner) +
@@ -215,7 +215,7 @@ class IntersectionChecker {
     }
     if (!bad) return;
     ElementIds ids;
-    ids.segments = {std::min(s.owner, t.owner), std::max(s.owner, t.owner)};
+    ids.segments = std::vector<Index>{std::min(s.owner, t.owner), std::max(s.owner, t.owner)};
     sink_.add(ErrorCode::Intersection,
               "segments " + std::to_string(ids.segments[0]) + " and " + std::to_string(ids.segments[1]) +
                   " intersect (not in a shared vertex)",
