@@ -12,7 +12,7 @@
 
 namespace qualmesh {
 
-namespace io {
+namespace plc_io {
 
 std::string lower_extension(const std::string& path) {
   return to_lower(std::filesystem::path(path).extension().string());
@@ -54,29 +54,29 @@ Plc finish_surface(SurfaceSoup soup, const std::string& path, const ReadOptions&
   return plc;
 }
 
-}  // namespace io
+}  // namespace plc_io
 
 bool is_plc_path(const std::string& path) {
-  const std::string ext = io::lower_extension(path);
+  const std::string ext = plc_io::lower_extension(path);
   return ext == ".poly" || ext == ".smesh" || ext == ".node" || ext == ".off" || ext == ".stl" || ext == ".obj" ||
          ext == ".mesh";
 }
 
 Plc read_plc(const std::string& path, const ReadOptions& options) {
-  const std::string ext = io::lower_extension(path);
+  const std::string ext = plc_io::lower_extension(path);
   Plc plc;
   if (ext == ".poly" || ext == ".smesh") {
-    plc = io::read_tetgen_poly(path);
+    plc = plc_io::read_tetgen_poly(path);
   } else if (ext == ".node") {
-    plc = io::read_tetgen_node(path);
+    plc = plc_io::read_tetgen_node(path);
   } else if (ext == ".off") {
-    plc = io::read_off(path, options);
+    plc = plc_io::read_off(path, options);
   } else if (ext == ".stl") {
-    plc = io::read_stl(path, options);
+    plc = plc_io::read_stl(path, options);
   } else if (ext == ".obj") {
-    plc = io::read_obj(path, options);
+    plc = plc_io::read_obj(path, options);
   } else if (ext == ".mesh") {
-    plc = io::read_medit(path, options);
+    plc = plc_io::read_medit(path, options);
   } else {
     throw InputError(ErrorCode::Unsupported,
                      "unknown PLC format '" + ext +

@@ -8,7 +8,7 @@
 #include "qualmesh/plc.h"
 #include "qualmesh/plc_io.h"
 
-namespace qualmesh::io {
+namespace qualmesh::plc_io {
 
 // What a surface reader collects before finishing: raw vertices and polygon faces referring to them (0-based,
 // already checked to be in range), each with a marker.
@@ -33,4 +33,4 @@ Plc read_medit(const std::string& path, const ReadOptions& options);
 // Lower-case extension with the dot (".poly"), or "".
 std::string lower_extension(const std::string& path);
 
-}  // namespace qualmesh::io
+}  // namespace qualmesh::plc_io

@@ -9,7 +9,7 @@
 #include "qualmesh/error.h"
 #include "text_scanner.h"
 
-namespace qualmesh::io {
+namespace qualmesh::plc_io {
 
 namespace {
 
@@ -110,4 +110,4 @@ Plc read_medit(const std::string& path, const ReadOptions& options) {
   return finish_surface(std::move(soup), path, options);
 }
 
-}  // namespace qualmesh::io
+}  // namespace qualmesh::plc_io

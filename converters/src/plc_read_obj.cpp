@@ -8,14 +8,7 @@
 #include "qualmesh/error.h"
 #include "text_scanner.h"
 
-namespace qualmesh::io {
-
-namespace {
-struct PendingCorner {
-  long long ref;  // 1-based absolute
-  long line;
-};
-}  // namespace
+namespace qualmesh::plc_io {
 
 Plc read_obj(const std::string& path, const ReadOptions& options) {
   TextScanner scanner(read_whole_file(path), path, true);
@@ -90,4 +83,4 @@ Plc read_obj(const std::string& path, const ReadOptions& options) {
   return finish_surface(std::move(soup), path, options);
 }
 
-}  // namespace qualmesh::io
+}  // namespace qualmesh::plc_io

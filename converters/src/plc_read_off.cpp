@@ -9,7 +9,7 @@
 #include "qualmesh/error.h"
 #include "text_scanner.h"
 
-namespace qualmesh::io {
+namespace qualmesh::plc_io {
 
 namespace {
 constexpr std::size_t kMinVertexBytes = 6;  // "0 0 0\n"
@@ -97,4 +97,4 @@ Plc read_off(const std::string& path, const ReadOptions& options) {
   return finish_surface(std::move(soup), path, options);
 }
 
-}  // namespace qualmesh::io
+}  // namespace qualmesh::plc_io

@@ -12,7 +12,7 @@
 #include "qualmesh/error.h"
 #include "text_scanner.h"
 
-namespace qualmesh::io {
+namespace qualmesh::plc_io {
 
 namespace {
 
@@ -175,4 +175,4 @@ Plc read_stl(const std::string& path, const ReadOptions& options) {
   return finish_surface(read_ascii(std::move(data), path), path, options);
 }
 
-}  // namespace qualmesh::io
+}  // namespace qualmesh::plc_io

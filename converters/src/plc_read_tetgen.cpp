@@ -11,7 +11,7 @@
 #include "qualmesh/error.h"
 #include "text_scanner.h"
 
-namespace qualmesh::io {
+namespace qualmesh::plc_io {
 
 namespace {
 
@@ -219,4 +219,4 @@ Plc read_tetgen_poly(const std::string& path) {
   return plc;
 }
 
-}  // namespace qualmesh::io
+}  // namespace qualmesh::plc_io

@@ -165,7 +165,7 @@ void write_off(std::ostream& out, const Plc& plc) {
 }  // namespace
 
 void write_plc(const Plc& plc, const std::string& path) {
-  const std::string ext = io::lower_extension(path);
+  const std::string ext = plc_io::lower_extension(path);
   PlcFormat format;
   if (ext == ".poly") {
     format = PlcFormat::Poly;

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <utility>
 
-namespace qualmesh::io {
+namespace qualmesh::plc_io {
 
 std::string read_whole_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -171,4 +171,4 @@ std::size_t TextScanner::to_count(std::string_view token, const std::string& wha
   return static_cast<std::size_t>(count);
 }
 
-}  // namespace qualmesh::io
+}  // namespace qualmesh::plc_io

@@ -11,7 +11,7 @@
 #include "qualmesh/error.h"
 #include "qualmesh/types.h"
 
-namespace qualmesh::io {
+namespace qualmesh::plc_io {
 
 // Reads a whole file; throws InputError(Io) when it is missing or unreadable.
 std::string read_whole_file(const std::string& path);
@@ -61,4 +61,4 @@ bool parse_integer(std::string_view token, long long& value);
 // Lower-case copy (ASCII).
 std::string to_lower(std::string_view text);
 
-}  // namespace qualmesh::io
+}  // namespace qualmesh::plc_io
