@@ -11,13 +11,15 @@
 //  - a shared edge uv: coplanar triangles on the same side of uv overlap; otherwise they meet along uv only, which
 //    must then be a segment of both facets (not an interior diagonal of either);
 //  - three shared vertices: the facets overlap.
-// Segment pairs and segment-triangle pairs follow the same rule. Vertices are compared through their
+// Segment pairs and segment-triangle pairs follow the same rule, and a vertex on no facet and no free segment must
+// not lie on any of them. Vertices are compared through their
 // representative, so exact duplicates (reported elsewhere) do not flood the report.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
 #include <algorithm>
+#include <string>
 #include <unordered_set>
 #include <vector>
 
@@ -39,10 +41,12 @@ std::uint64_t pair_key(Index a, Index b) {
 
 std::uint64_t edge_key(Index a, Index b) { return pair_key(a, b); }
 
-// A facet triangle or a free segment.
+enum class PrimitiveKind : std::uint8_t { Triangle, Segment, Vertex };
+
+// A facet triangle, a free segment or a lone vertex.
 struct Primitive {
-  bool is_triangle = true;
-  Index owner = 0;     // facet id or segment id
+  PrimitiveKind kind = PrimitiveKind::Triangle;
+  Index owner = 0;     // facet id, segment id or vertex id
   Index triangle = 0;  // triangle index in the facet's triangulation
 };
 
@@ -53,6 +57,7 @@ class IntersectionChecker {
   void run() {
     const Plc& plc = *input_.plc;
     std::vector<Box> boxes;
+    std::vector<char> used(plc.vertices.size(), 0);
     for (std::size_t f = 0; f < plc.facets.size(); ++f) {
       if (!input_.facet_usable[f]) continue;
       const FacetTriangulation& tri = input_.triangulations[f];
@@ -60,9 +65,11 @@ class IntersectionChecker {
         CGAL::Bbox_3 box;
         for (Index id : tri.triangles[t]) box += point(static_cast<Index>(f), id).bbox();
         boxes.emplace_back(box, primitives_.size());
-        primitives_.push_back({true, static_cast<Index>(f), static_cast<Index>(t)});
-        for (int i = 0; i < 3; ++i)
+        primitives_.push_back({PrimitiveKind::Triangle, static_cast<Index>(f), static_cast<Index>(t)});
+        for (int i = 0; i < 3; ++i) {
           covered_edges_.insert(edge_key(rep(tri.triangles[t][(i + 1) % 3]), rep(tri.triangles[t][(i + 2) % 3])));
+          if (tri.is_plc_vertex(tri.triangles[t][i])) used[rep(tri.triangles[t][i])] = 1;
+        }
       }
     }
     for (std::size_t s = 0; s < input_.segments.size(); ++s) {
@@ -70,7 +77,13 @@ class IntersectionChecker {
       if (rep(seg.a) == rep(seg.b) || covered_edges_.count(edge_key(rep(seg.a), rep(seg.b)))) continue;
       const CGAL::Bbox_3 box = vertex(seg.a).bbox() + vertex(seg.b).bbox();
       boxes.emplace_back(box, primitives_.size());
-      primitives_.push_back({false, static_cast<Index>(s), 0});
+      primitives_.push_back({PrimitiveKind::Segment, static_cast<Index>(s), 0});
+      used[rep(seg.a)] = used[rep(seg.b)] = 1;
+    }
+    for (std::size_t v = 0; v < plc.vertices.size(); ++v) {
+      if (used[rep(static_cast<Index>(v))] || rep(static_cast<Index>(v)) != v) continue;
+      boxes.emplace_back(vertex(static_cast<Index>(v)).bbox(), primitives_.size());
+      primitives_.push_back({PrimitiveKind::Vertex, static_cast<Index>(v), 0});
     }
     CGAL::box_self_intersection_d(boxes.begin(), boxes.end(),
                                   [this](const Box& a, const Box& b) { test(a.info(), b.info()); });
@@ -91,15 +104,45 @@ class IntersectionChecker {
   void test(std::size_t i, std::size_t j) {
     const Primitive& a = primitives_[i];
     const Primitive& b = primitives_[j];
-    if (a.is_triangle && b.is_triangle) {
+    using K = PrimitiveKind;
+    if (a.kind == K::Vertex || b.kind == K::Vertex) {
+      if (a.kind != K::Vertex) test_vertex(b, a);
+      if (b.kind != K::Vertex) test_vertex(a, b);
+    } else if (a.kind == K::Triangle && b.kind == K::Triangle) {
       if (a.owner != b.owner) test_triangles(a, b);
-    } else if (a.is_triangle) {
+    } else if (a.kind == K::Triangle) {
       test_segment_triangle(b, a);
-    } else if (b.is_triangle) {
+    } else if (b.kind == K::Triangle) {
       test_segment_triangle(a, b);
     } else {
       test_segments(a, b);
     }
+  }
+
+  // A lone vertex (on no facet triangle and no free segment) touching a facet triangle or a free segment.
+  void test_vertex(const Primitive& v, const Primitive& other) {
+    const KPoint p = vertex(v.owner);
+    bool bad;
+    std::string what;
+    ElementIds ids;
+    ids.vertices = std::vector<Index>{v.owner};
+    if (other.kind == PrimitiveKind::Triangle) {
+      const std::uint64_t key = (static_cast<std::uint64_t>(v.owner) << 32) | other.owner;
+      if (reported_vertex_facets_.count(key)) return;
+      const auto& tri = input_.triangulations[other.owner].triangles[other.triangle];
+      bad = KTriangle(point(other.owner, tri[0]), point(other.owner, tri[1]), point(other.owner, tri[2])).has_on(p);
+      if (bad) reported_vertex_facets_.insert(key);
+      what = "facet " + std::to_string(other.owner);
+      ids.facets = std::vector<Index>{other.owner};
+    } else {
+      const Segment& seg = input_.segments[other.owner];
+      bad = KSegment(vertex(seg.a), vertex(seg.b)).has_on(p);
+      what = "segment " + std::to_string(other.owner);
+      ids.segments = std::vector<Index>{other.owner};
+    }
+    if (!bad) return;
+    sink_.add(ErrorCode::Intersection,
+              "vertex " + std::to_string(v.owner) + " lies on " + what + " but is not one of its vertices", ids);
   }
 
   void test_triangles(const Primitive& a, const Primitive& b) {
@@ -228,6 +271,7 @@ class IntersectionChecker {
   std::unordered_set<std::uint64_t> covered_edges_;
   std::unordered_set<std::uint64_t> reported_facets_;
   std::unordered_set<std::uint64_t> reported_segment_facets_;
+  std::unordered_set<std::uint64_t> reported_vertex_facets_;
 };
 
 }  // namespace

@@ -200,6 +200,21 @@ TEST(Validate, SegmentThroughFacetAndOverlappingSegments) {
   ASSERT_EQ(r.num_problems(ErrorCode::Intersection), 1u);
   EXPECT_EQ(r.problems[0].ids.facets, (std::vector<Index>{1}));
   EXPECT_EQ(r.problems[0].ids.segments.size(), 1u);
+  // Two free segments crossing inside the cube, and two overlapping collinear ones sharing an end.
+  Plc crossing = make_cube();
+  crossing.vertices.insert(crossing.vertices.end(), {{0.2, 0.5, 0.5}, {0.8, 0.5, 0.5}, {0.5, 0.2, 0.5},
+                                                     {0.5, 0.8, 0.5}, {0.9, 0.5, 0.5}});
+  crossing.segments = {{8, 9, 0}, {10, 11, 0}, {8, 12, 0}};
+  const ValidationReport c = validate_plc(crossing);
+  EXPECT_EQ(c.num_problems(ErrorCode::Intersection), 3u);  // 8-9 x 10-11, 8-12 x 10-11, 8-9 overlaps 8-12
+  for (const Problem& p : c.problems) EXPECT_EQ(p.ids.segments.size(), 2u);
+  // A lone vertex in the middle of a face.
+  Plc lone = make_cube();
+  lone.vertices.push_back({0.5, 0.5, 1.0});
+  const ValidationReport l = validate_plc(lone);
+  ASSERT_EQ(l.num_problems(ErrorCode::Intersection), 1u);
+  EXPECT_EQ(l.problems[0].ids.vertices, (std::vector<Index>{8}));
+  EXPECT_EQ(l.problems[0].ids.facets, (std::vector<Index>{1}));
   // A segment from a cube corner into the cube touches the faces only at that corner: fine.
   Plc inner = make_cube();
   inner.vertices.push_back({0.5, 0.5, 0.5});
