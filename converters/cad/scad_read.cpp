@@ -6,7 +6,8 @@
 //  2. facets whose vertices are exactly collinear (zero area) are dropped;
 //  3. an edge then used by one facet only that has vertices exactly on its interior (a T-junction) gets them
 //     inserted in that facet's polygon (the facet stays the same point set).
-// If an edge is still used by other than two facets, the model is refused (OpenBoundary) with where it is open.
+// If an edge is still used by other than two facets, the model is refused (OpenBoundary) with where it is open; a
+// render whose facets intersect (validate_plc) is refused too (Intersection), naming the facets.
 // OpenSCAD's own error messages (syntax errors, empty top-level object) reach the user in the InputError.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -27,6 +28,7 @@
 
 #include "cad_private.h"
 #include "qualmesh/error.h"
+#include "qualmesh/plc_validate.h"
 
 namespace qualmesh::cad {
 namespace {
@@ -226,6 +228,29 @@ void repair_exactly(Plc& plc, std::vector<std::string>& log, const std::string& 
                      file);
 }
 
+// A render that intersects itself (candleStand.scad with OpenSCAD 2021.01) has no exact repair: refused here, with
+// the facets named, rather than downstream as an anonymous PLC.
+void refuse_self_intersection(const Plc& plc, const std::string& file) {
+  ValidateOptions options;
+  options.require_closed = false;  // closedness was settled by repair_exactly
+  options.max_problems_per_kind = 3;
+  const ValidationReport report = validate_plc(plc, options);
+  const std::size_t count = report.num_problems(ErrorCode::Intersection);
+  if (count == 0) return;
+  std::string examples;
+  ElementIds ids;
+  for (const Problem& problem : report.problems) {
+    if (problem.code != ErrorCode::Intersection) continue;
+    examples += (examples.empty() ? "" : "; ") + problem.message;
+    ids.facets.insert(ids.facets.end(), problem.ids.facets.begin(), problem.ids.facets.end());
+  }
+  throw InputError(ErrorCode::Intersection,
+                   "OpenSCAD's render intersects itself (" + std::to_string(count) +
+                       " facet pairs) and cannot be repaired exactly: " + examples +
+                       " (facet numbers: 0-based, among the facets left by the exact repair)",
+                   file, 0, ids);
+}
+
 }  // namespace
 
 CadModel read_scad_file(const std::string& path, const CadOptions& options) {
@@ -261,6 +286,7 @@ CadModel read_scad_file(const std::string& path, const CadOptions& options) {
   if (model.plc.facets.empty())
     throw InputError(ErrorCode::Empty, "openscad rendered an empty model: " + openscad_complaints(console), path);
   repair_exactly(model.plc, model.summary.healing_log, path);
+  refuse_self_intersection(model.plc, path);
   model.summary.source_format = "OpenSCAD";
   model.summary.num_faces = model.plc.facets.size();
   model.summary.num_vertices = model.plc.vertices.size();
