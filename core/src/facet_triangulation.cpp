@@ -6,7 +6,6 @@
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_face_base_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
@@ -15,23 +14,23 @@
 #include <unordered_map>
 #include <utility>
 
+#include "cgal_types.h"
+
 namespace qualmesh::detail {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using KPoint3 = Kernel::Point_3;
-using KPoint2 = Kernel::Point_2;
-
+// The kernel is cgal_types.h's; the 2D triangulation differs from its Cdt2 in two ways: vertices may carry no PLC id
+// (crossing points), and crossing constraints are allowed (Exact_predicates_tag), since facets may overlap.
 struct VertexInfo {
   Index id = kNoIndex;  // PLC vertex id; kNoIndex for a point the triangulation added
 };
-struct FaceInfo {
+struct FacetFaceInfo {
   int parity = -1;    // number of polygons covering the face, mod 2; -1 = not reached yet
   bool holed = false;  // reached from a hole point
 };
 
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexInfo, Kernel>;
-using Fbb = CGAL::Triangulation_face_base_with_info_2<FaceInfo, Kernel>;
+using Fbb = CGAL::Triangulation_face_base_with_info_2<FacetFaceInfo, Kernel>;
 using Fb = CGAL::Constrained_triangulation_face_base_2<Kernel, Fbb>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;

@@ -5,8 +5,6 @@
 // sound data (finite coordinates, indices in range) and only on the facets that passed the structural checks.
 #include "qualmesh/plc_validate.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +12,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "cgal_types.h"
 #include "facet_triangulation.h"
 #include "plc_validate_internal.h"
 
@@ -31,7 +30,7 @@ std::string format_point(const Point3& p) {
 namespace {
 
 using detail::ProblemSink;
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using detail::Kernel;  // cgal_types.h: the one place the kernel is chosen
 
 bool is_finite(const Point3& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 

@@ -14,7 +14,6 @@
 // Segment pairs and segment-triangle pairs follow the same rule, and a vertex on no facet and no free segment must
 // not lie on any of them. Vertices are compared through their
 // representative, so exact duplicates (reported elsewhere) do not flood the report.
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
@@ -23,12 +22,12 @@
 #include <unordered_set>
 #include <vector>
 
+#include "cgal_types.h"
 #include "plc_validate_internal.h"
 
 namespace qualmesh::detail {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using KPoint = Kernel::Point_3;
 using KSegment = Kernel::Segment_3;
 using KTriangle = Kernel::Triangle_3;
