@@ -37,7 +37,8 @@ const ManifestCount kManifest[] = {
     {"slit-1.smesh", 14, 13},      {"fandisk.off", 6475, 12946},    {"elephant.off", 2775, 5558},
     {"anchor.off", 519, 1050},     {"joint.off", 221, 446},         {"couplingdown.off", 1841, 3714},
     {"bunny00.off", 37706, 75408}, {"elephant.mesh", 931, 1871},    {"t13_data.stl", 788, 1580},
-    {"aorta2.stl", 6278, 12455},   {"lever.stl", 377, 774},
+    {"aorta2.stl", 6278, 12455},   {"lever.stl", 377, 774},         {"pinion.off", 650, 1300},
+    {"turbine.off", 9210, 18460},  {"cheese.off", 8629, 17786},     {"cubes.off", 14, 24},
 };
 
 class ManifestCounts : public ::testing::TestWithParam<ManifestCount> {};
@@ -58,6 +59,31 @@ INSTANTIATE_TEST_SUITE_P(SharedPlc, ManifestCounts, ::testing::ValuesIn(kManifes
                            std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
                            return name;
                          });
+
+TEST(ReadOff, CowDuplicateVertexIsMerged) {
+  // cow.off lists 2904 vertices, all used (MANIFEST counts 2904), but vertex 2903 repeats vertex 44 exactly
+  // (-0.410173, 0.204796, -1.55991e-08); surface readers merge exact duplicates, first occurrence kept.
+  const std::string path = shared_path("data/plc/cow.off");
+  QM_REQUIRE_FILE(path);
+  const Plc plc = read_plc(path, unmerged());
+  EXPECT_EQ(plc.vertices.size(), 2903u);
+  EXPECT_EQ(plc.facets.size(), 5804u);
+  EXPECT_EQ(plc.vertices[44], (Point3{-0.410173, 0.204796, -1.55991e-08}));
+}
+
+TEST(ReadOff, CubesSharingAnEdgeMergeIntoTwelveSquares) {
+  // Two unit cubes touching along one edge: each cube face is two triangles; the shared edge is used by four
+  // facets, so nothing is merged across it. 24 triangles -> 12 squares, all 14 vertices kept.
+  const std::string path = shared_path("data/plc/cubes.off");
+  QM_REQUIRE_FILE(path);
+  const Plc plc = read_plc(path);
+  EXPECT_EQ(plc.vertices.size(), 14u);
+  ASSERT_EQ(plc.facets.size(), 12u);
+  for (const Facet& f : plc.facets) {
+    ASSERT_EQ(f.polygons.size(), 1u);
+    EXPECT_EQ(f.polygons[0].size(), 4u);
+  }
+}
 
 TEST(ReadTetgen, ExamplePolyRegionsHolesAndFacetHole) {
   const std::string path = shared_path("data/plc/example.poly");
