@@ -435,6 +435,32 @@ TEST(ValidateShared, T13MinDihedralIs45Degrees) {
   EXPECT_EQ(sharp.size(), 10u);
 }
 
+// Segments carrying a facet-facet angle below `degrees`.
+std::size_t count_sharp_segments(const Plc& plc, double degrees) {
+  ValidateOptions options;
+  options.acute_threshold_deg = degrees;
+  options.max_problems_per_kind = 1000000;
+  std::set<Index> sharp;
+  for (const InputAngle& a : validate_plc(plc, options).acute_angles)
+    if (a.kind == AngleKind::FacetFacet) sharp.insert(a.segment);
+  return sharp.size();
+}
+
+TEST(ValidateShared, CheeseHas140EdgesBelow60Degrees) {
+  QM_SHARED("cheese.off");
+  const Plc plc = read_plc(test::shared_path("data/plc/cheese.off"));
+  const ValidationReport r = validate_plc(plc);
+  EXPECT_NEAR(r.min_angle_deg_by_kind[static_cast<int>(AngleKind::FacetFacet)], 30.1, 0.05);  // MANIFEST: 30.1
+  EXPECT_EQ(count_sharp_segments(plc, 60), 140u);                                              // MANIFEST: 140
+}
+
+TEST(ValidateShared, CowReflexEdgeGivesItsExteriorAngle) {
+  QM_SHARED("cow.off");
+  // MANIFEST: reflex edges up to 357.2 deg; the boxed domain meshes the outside too, so 360 - 357.2 = 2.8 deg.
+  const ValidationReport r = validate_shared("cow.off");
+  EXPECT_NEAR(r.min_angle_deg_by_kind[static_cast<int>(AngleKind::FacetFacet)], 2.8, 0.05);
+}
+
 TEST(ValidateShared, LargeInputsAreFast) {
   for (const char* name : {"bunny00.off", "cheese.off"}) {
     const std::string path = test::shared_path(std::string("data/plc/") + name);
