@@ -2,8 +2,10 @@
 // Wavefront OBJ and Medit .mesh surfaces in; .poly, .smesh and .off out.
 //
 // Why here: every front end (CLI, Python, FreeCAD) loads its input through read_plc(), so that a malformed file gets
-// the same typed error everywhere: InputError with the file, the 1-based line (text formats) and a message naming
-// the offending element (numbered as in the file). Readers check syntax and references only; geometric validity
+// the same typed error everywhere: InputError with the file, the 1-based line (text formats; 0 for binary STL) and a
+// message naming the offending element as the file numbers it (TetGen: from its first node index; OBJ, Medit: from
+// 1; OFF: from 0, like its vertex indices; STL facets: from 1). InputError::ids() holds 0-based ids where one
+// element is at fault. Readers check syntax and references only; geometric validity
 // (duplicates, closedness, intersections, planarity) is judged by validate_plc().
 #pragma once
 
