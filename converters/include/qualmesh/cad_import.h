@@ -52,8 +52,9 @@ struct CadSummary {
   // For each face (face_solids[i] is Face<i+1>): the solid numbers on its two sides, 0 = outside. The facets of the
   // face are oriented outward of face_solids[i][0]; an internal face has both entries non-zero.
   std::vector<std::array<int, 2>> face_solids;
-  // Largest distance from a tessellation point to its CAD face (the deflection used plus the face's tolerance), per
-  // face, in model units. For .scad: 0 (the facets are the model).
+  // Bound on the distance from any point of a face's facets to the CAD face, per face, in model units: twice the
+  // deflection used (OpenCASCADE controls the deflection at sample points only) plus the face's and its edges'
+  // tolerances. Empty for .scad (the facets are the model).
   std::vector<double> face_tolerances;
   double deflection_used = 0;  // absolute chordal deflection actually used, in model units
   std::vector<std::string> healing_log;  // what was healed, one line per action (empty: nothing needed)
@@ -74,5 +75,12 @@ bool is_cad_path(const std::string& path);
 // own message), an OpenSCAD render that cannot be repaired exactly (OpenBoundary / DegenerateFacet).
 // Does not print; OpenCASCADE's own console messages are silenced.
 CadModel read_cad(const std::string& path, const CadOptions& options = {});
+
+// Checker for meshes of a CAD model: for each point, its distance (model units) to CAD face Face<face_numbers[i]>
+// of the model at `path` read and healed with `options` (so with the numbering read_cad gives), measured by
+// OpenCASCADE on the trimmed face; infinity for a face number out of range. Reads the file again; throws InputError
+// as read_cad does, and for .scad files (no CAD faces). Mutates nothing.
+std::vector<double> distances_to_cad_faces(const std::string& path, const std::vector<Point3>& points,
+                                           const std::vector<int>& face_numbers, const CadOptions& options = {});
 
 }  // namespace qualmesh

@@ -1,0 +1,153 @@
+// End-to-end tests of CAD models through the mesher (read_cad -> mesh_plc), on the models of shared/data/cad that
+// the engine meshes in seconds:
+//  - every region's mesh volume equals OpenCASCADE's volume of its solid within the tessellation bound
+//    (sum over the solid's faces of area x (deflection + face tolerance));
+//  - every boundary node lies on its CAD face (OpenCASCADE's distance) within the face's tolerance + deflection;
+//  - the boundary faces carry exactly the CAD face numbers 1..num_faces; the tets carry the solid numbers;
+//  - a BooleanFragments document gives two regions that meet on an internal facet.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "qualmesh/cad_import.h"
+#include "qualmesh/mesher.h"
+#include "test_support.h"
+
+namespace qualmesh {
+namespace {
+
+double tet_volume(const TetMesh& mesh, const std::array<Index, 4>& t) {
+  const Point3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]], &d = mesh.points[t[3]];
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]},
+               w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+          u[2] * (v[0] * w[1] - v[1] * w[0])) / 6;
+}
+
+double polygon_area(const Plc& plc, const std::vector<Index>& loop) {
+  double n[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Point3& p = plc.vertices[loop[i]];
+    const Point3& q = plc.vertices[loop[(i + 1) % loop.size()]];
+    n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+    n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+    n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+  }
+  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+class CadMeshes : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CadMeshes, MeshMatchesCadModel) {
+  const std::string path = test::shared_path(std::string("data/cad/") + GetParam());
+  QM_REQUIRE_FILE(path);
+  const CadModel model = read_cad(path);
+  const CadSummary& summary = model.summary;
+  const MeshResult result = mesh_plc(model.plc);
+  ASSERT_EQ(result.status, MeshStatus::Ok);
+  const TetMesh& mesh = result.mesh;
+  ASSERT_EQ(mesh.tet_region.size(), mesh.tets.size());
+  ASSERT_EQ(mesh.face_marker.size(), mesh.faces.size());
+
+  // Regions are the solids; volumes agree with OpenCASCADE's within the tessellation bound.
+  std::vector<double> volume(summary.num_solids + 1, 0), bound(summary.num_solids + 1, 0);
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const int region = mesh.tet_region[t];
+    ASSERT_GE(region, 1);
+    ASSERT_LE(region, static_cast<int>(summary.num_solids));
+    const double v = tet_volume(mesh, mesh.tets[t]);
+    ASSERT_GT(v, 0);
+    volume[region] += v;
+  }
+  for (const Facet& facet : model.plc.facets) {
+    double area = 0;
+    for (const auto& loop : facet.polygons) area += polygon_area(model.plc, loop);
+    for (int side : summary.face_solids[facet.marker - 1])
+      if (side) bound[side] += area * summary.face_tolerances[facet.marker - 1];
+  }
+  for (std::size_t s = 1; s <= summary.num_solids; ++s)
+    EXPECT_NEAR(volume[s], summary.solid_volumes[s - 1], bound[s]) << "Solid" << s;
+
+  // The boundary carries every CAD face number, and nothing else.
+  std::set<int> ids(mesh.face_marker.begin(), mesh.face_marker.end());
+  EXPECT_EQ(ids.size(), summary.num_faces);
+  EXPECT_EQ(*ids.begin(), 1);
+  EXPECT_EQ(*ids.rbegin(), static_cast<int>(summary.num_faces));
+
+  // Every boundary node on its CAD face, within the face's tolerance plus the deflection.
+  std::map<Index, int> node_face;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (Index v : mesh.faces[f]) node_face.emplace(v, mesh.face_marker[f]);
+  std::vector<Point3> points;
+  std::vector<int> faces;
+  // At most about 2000 nodes per model (a deterministic stride): OpenCASCADE's distance to a B-spline face costs
+  // about a millisecond.
+  const std::size_t stride = std::max<std::size_t>(1, node_face.size() / 2000);
+  std::size_t k = 0;
+  for (const auto& [node, face] : node_face) {
+    if (k++ % stride) continue;
+    points.push_back(mesh.points[node]);
+    faces.push_back(face);
+  }
+  const std::vector<double> distances = distances_to_cad_faces(path, points, faces);
+  std::size_t num_off = 0;
+  double worst = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double allowed = summary.face_tolerances[faces[i] - 1] * (1 + 1e-9);
+    if (distances[i] > allowed) ++num_off;
+    worst = std::max(worst, distances[i] / summary.face_tolerances[faces[i] - 1]);
+  }
+  EXPECT_EQ(num_off, 0u) << "boundary nodes off their CAD face; worst distance / tolerance = " << worst;
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedData, CadMeshes,
+                         ::testing::Values("box_static.FCStd", "fcFEM_Stacked_Beam_Example.FCStd", "cube1000.igs",
+                                           "red_cube_blue_cylinder.step", "part.step", "t20_data.step",
+                                           "wrenchnut.stp"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           std::string name = info.param;
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
+
+TEST(CadMeshes, StackedBeamsMeetOnAnInternalFacet) {
+  const std::string path = test::shared_path("data/cad/fcFEM_Stacked_Beam_Example.FCStd");
+  QM_REQUIRE_FILE(path);
+  const CadModel model = read_cad(path);
+  const MeshResult result = mesh_plc(model.plc);
+  ASSERT_EQ(result.status, MeshStatus::Ok);
+  std::set<int> regions(result.mesh.tet_region.begin(), result.mesh.tet_region.end());
+  EXPECT_EQ(regions, (std::set<int>{1, 2}));
+  int internal_face = 0;
+  for (std::size_t f = 0; f < model.summary.face_solids.size(); ++f)
+    if (model.summary.face_solids[f][1]) internal_face = static_cast<int>(f + 1);
+  ASSERT_GT(internal_face, 0);
+  // The internal facet's mesh faces are shared by a tet of each region.
+  std::map<std::array<Index, 3>, std::set<int>> regions_at_face;
+  for (std::size_t t = 0; t < result.mesh.tets.size(); ++t) {
+    const auto& tet = result.mesh.tets[t];
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<Index, 3> key;
+      for (int k = 0, j = 0; k < 4; ++k)
+        if (k != skip) key[j++] = tet[k];
+      std::sort(key.begin(), key.end());
+      regions_at_face[key].insert(result.mesh.tet_region[t]);
+    }
+  }
+  std::size_t num_internal = 0;
+  for (std::size_t f = 0; f < result.mesh.faces.size(); ++f) {
+    if (result.mesh.face_marker[f] != internal_face) continue;
+    auto key = result.mesh.faces[f];
+    std::sort(key.begin(), key.end());
+    EXPECT_EQ(regions_at_face[key], (std::set<int>{1, 2}));
+    ++num_internal;
+  }
+  EXPECT_GT(num_internal, 0u);
+}
+
+}  // namespace
+}  // namespace qualmesh
