@@ -146,6 +146,8 @@ TEST_P(CadModels, ConvertsToClosedPlcWithCadNumbering) {
   }
 }
 
+// red_cube_blue_cylinder.step and wrenchnut.stp hold two disjoint solids (OpenCASCADE: 5 and 0.436 mm apart, no
+// common volume): two regions, no internal facet. The BooleanFragments document shares one face.
 INSTANTIATE_TEST_SUITE_P(
     SharedData, CadModels,
     ::testing::Values(CadCase{"1385_Laufrad_1000.stp", 1, 123, 0}, CadCase{"918_pump_carter_sup_21_03_2006.stp", 1, 119, 0},
