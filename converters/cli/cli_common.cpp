@@ -1,25 +1,89 @@
-// Input loading shared by the subcommands.
+// Input loading shared by the subcommands: PLC formats through read_plc, CAD and OpenSCAD through read_cad when the
+// CAD front end (OpenCASCADE) was built.
 #include "cli_common.h"
+
+#include <cstdio>
 
 #include "qualmesh/error.h"
 #include "qualmesh/plc_io.h"
+#if QUALMESH_WITH_CAD
+#include "qualmesh/cad_import.h"
+#endif
 
 namespace qualmesh::cli {
+
+namespace {
+
+bool has_cad_extension(const std::string& path) {
+  const auto dot = path.rfind('.');
+  if (dot == std::string::npos) return false;
+  std::string ext = path.substr(dot + 1);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* known : {"step", "stp", "iges", "igs", "brep", "brp", "fcstd", "scad"}) {
+    if (ext == known) return true;
+  }
+  return false;
+}
+
+#if QUALMESH_WITH_CAD
+Plc load_cad(const std::string& path, const InputOptions& options, std::vector<std::string>* notes) {
+  CadOptions cad_options;
+  cad_options.deflection = options.deflection;
+  cad_options.relative_deflection = options.relative_deflection;
+  CadModel model = read_cad(path, cad_options);
+  if (notes) {
+    const CadSummary& s = model.summary;
+    char line[200];
+    std::snprintf(line, sizeof line, "%s model: %zu solids, %zu faces, %zu edges, %zu vertices",
+                  s.source_format.c_str(), s.num_solids, s.num_faces, s.num_edges, s.num_vertices);
+    notes->push_back(line);
+    for (std::size_t i = 0; i < s.solid_volumes.size(); ++i) {
+      std::snprintf(line, sizeof line, "Solid%zu: volume %.10g", i + 1, s.solid_volumes[i]);
+      notes->push_back(line);
+    }
+    if (s.deflection_used > 0) {
+      std::snprintf(line, sizeof line, "curved faces tessellated with chordal deflection %.4g", s.deflection_used);
+      notes->push_back(line);
+    }
+    for (const std::string& healed : s.healing_log) notes->push_back("healed: " + healed);
+  }
+  return std::move(model.plc);
+}
+#endif
+
+}  // namespace
 
 void add_input_options(CLI::App& command, InputOptions& options) {
   command.add_flag("--keep-triangles", options.keep_triangles,
                    "Surface inputs: keep every triangle as its own facet (default: merge adjacent coplanar "
                    "triangles into polygonal facets)");
+  command.add_option("--deflection", options.deflection,
+                     "CAD inputs: absolute chordal deflection of curved faces, in model units (default: relative)");
+  command.add_option("--relative-deflection", options.relative_deflection,
+                     "CAD inputs: chordal deflection relative to the bounding-box diagonal (default 0.001)");
 }
 
-Plc load_input(const std::string& path, const InputOptions& options) {
+Plc load_input(const std::string& path, const InputOptions& options, std::vector<std::string>* notes) {
   if (is_plc_path(path)) {
     ReadOptions read_options;
     read_options.merge_coplanar = !options.keep_triangles;
     return read_plc(path, read_options);
   }
+  if (has_cad_extension(path)) {
+#if QUALMESH_WITH_CAD
+    return load_cad(path, options, notes);
+#else
+    (void)notes;
+    throw InputError(ErrorCode::Unsupported,
+                     "this qualmesh was built without the CAD front end (OpenCASCADE); install "
+                     "libocct-data-exchange-dev and rebuild",
+                     path);
+#endif
+  }
   throw InputError(ErrorCode::Unsupported,
-                   "unknown input format (expected .poly, .smesh, .node, .off, .stl, .obj or .mesh)", path);
+                   "unknown input format (expected .poly .smesh .node .off .stl .obj .mesh, or CAD: .step .stp "
+                   ".iges .igs .brep .fcstd .scad)",
+                   path);
 }
 
 }  // namespace qualmesh::cli

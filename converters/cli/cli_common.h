@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 #include "qualmesh/plc.h"
 
@@ -27,12 +28,15 @@ void register_mesh_command(CLI::App& app, int& exit_code);
 
 // Options shared by the commands that read an input model.
 struct InputOptions {
-  bool keep_triangles = false;  // surface inputs: do not merge coplanar triangles into polygonal facets
+  bool keep_triangles = false;       // surface inputs: do not merge coplanar triangles into polygonal facets
+  double deflection = 0;             // CAD: absolute chordal deflection of curved faces (0 = relative)
+  double relative_deflection = 0.001;  // CAD: deflection relative to the bounding-box diagonal
 };
 void add_input_options(CLI::App& command, InputOptions& options);
 
-// Reads any input model the CLI accepts (PLC formats; CAD formats when built with the CAD front end) into a Plc.
+// Reads any input model the CLI accepts (PLC formats; CAD and OpenSCAD formats when built with the CAD front end)
+// into a Plc. When `notes` is given, lines describing the source (CAD solids, faces, edges, healing) are appended.
 // Throws InputError.
-Plc load_input(const std::string& path, const InputOptions& options);
+Plc load_input(const std::string& path, const InputOptions& options, std::vector<std::string>* notes = nullptr);
 
 }  // namespace qualmesh::cli

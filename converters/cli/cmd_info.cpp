@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "cli_common.h"
 #include "qualmesh/error.h"
@@ -54,15 +55,17 @@ std::string describe_angle(const InputAngle& angle) {
 }
 
 int run_info(const InfoArgs& args) {
-  const Plc plc = load_input(args.input, args.input_options);
+  std::vector<std::string> notes;
+  const Plc plc = load_input(args.input, args.input_options, &notes);
   std::size_t num_polygons = 0, num_facet_holes = 0;
   for (const Facet& f : plc.facets) {
     num_polygons += f.polygons.size();
     num_facet_holes += f.holes.size();
   }
   const BoundingBox box = bounding_box(plc);
-  std::cout << "file:         " << args.input << "\n"
-            << "vertices:     " << plc.vertices.size() << "\n"
+  std::cout << "file:         " << args.input << "\n";
+  for (const std::string& note : notes) std::cout << "source:       " << note << "\n";
+  std::cout             << "vertices:     " << plc.vertices.size() << "\n"
             << "segments:     " << collect_segments(plc).size() << " (" << plc.segments.size() << " explicit)\n"
             << "facets:       " << plc.facets.size() << " (" << num_polygons << " polygons, " << num_facet_holes
             << " facet hole points)\n"
@@ -80,20 +83,28 @@ int run_info(const InfoArgs& args) {
   if (report.ok()) {
     std::printf("validation:   ok\n");
   } else {
-    std::printf("validation:   %zu problem(s)\n", report.problems.size());
+    std::printf("validation:   INVALID:");
+    for (const ProblemCount& pc : report.problem_counts) std::printf(" %zu %s", pc.count, to_string(pc.code));
+    std::printf("\n");
     for (const Problem& p : report.problems) std::printf("  %s: %s\n", to_string(p.code), p.message.c_str());
   }
+  // Per kind first: on triangulated surfaces every triangle corner is a segment-segment input angle, so the
+  // facet-facet figure is the one that says whether the model has sharp edges.
   std::printf("input angles: min %.4g deg; %zu below %.4g deg\n", report.min_input_angle_deg,
               report.num_acute_angles, args.acute_threshold_deg);
+  for (AngleKind kind : {AngleKind::FacetFacet, AngleKind::SegmentFacet, AngleKind::SegmentSegment}) {
+    const auto k = static_cast<std::size_t>(kind);
+    std::printf("  %-15s min %8.4f deg, %zu below %.4g deg\n", angle_kind_name(kind),
+                report.min_angle_deg_by_kind[k], report.num_acute_by_kind[k], args.acute_threshold_deg);
+  }
   std::size_t listed = 0;
   for (const InputAngle& angle : report.acute_angles) {
-    if (listed++ == args.max_listed) {
-      std::printf("  ... (%zu more)\n", report.num_acute_angles - args.max_listed);
-      break;
-    }
+    if (listed == args.max_listed) break;
+    ++listed;
     std::printf("  %-15s %8.4f deg  %s\n", angle_kind_name(angle.kind), angle.angle_deg,
                 describe_angle(angle).c_str());
   }
+  if (report.num_acute_angles > listed) std::printf("  ... (%zu more)\n", report.num_acute_angles - listed);
   std::fflush(stdout);
   if (!report.ok()) {
     for (const Problem& p : report.problems) {
@@ -109,7 +120,7 @@ int run_info(const InfoArgs& args) {
 void register_info_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<InfoArgs>();
   CLI::App* command = app.add_subcommand("info", "Counts, bounding box, PLC validation and acute input angles");
-  command->add_option("input", args->input, "Input model (.poly .smesh .node .off .stl .obj .mesh)")
+  command->add_option("input", args->input, "Input model (.poly .smesh .node .off .stl .obj .mesh .step .iges .brep .fcstd .scad)")
       ->required();
   add_input_options(*command, args->input_options);
   command->add_option("--acute-below", args->acute_threshold_deg,
