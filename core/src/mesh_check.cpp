@@ -222,6 +222,7 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
     return a.key != b.key ? a.key < b.key : a.tet < b.tet;
   });
   std::vector<std::pair<std::array<Index, 3>, Index>> boundary;  // face, a tet that has it
+  std::vector<std::pair<std::array<Index, 3>, Index>> interior;  // faces between two tets of the same region
   for (std::size_t i = 0; i < face_uses.size();) {
     std::size_t j = i;
     while (j < face_uses.size() && face_uses[j].key == face_uses[i].key) ++j;
@@ -244,6 +245,8 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
       if (region(face_uses[i].tet) != region(face_uses[i + 1].tet)) {
         ++report.num_region_interface_faces;
         boundary.push_back({key, face_uses[i].tet});
+      } else {
+        interior.push_back({key, face_uses[i].tet});
       }
     } else {
       ++report.num_overshared_faces;
@@ -284,26 +287,40 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
     const double tolerance = options.tolerance * diagonal;
     const FacetGrid grid(facets, tolerance);
     std::vector<double> covered(facets.size(), 0);
-    for (const auto& [key, tet] : boundary) {
+    // The input facet a face lies on: its three vertices within tolerance of the plane, its centroid inside.
+    const auto find_facet = [&](const std::array<Index, 3>& key, double& area) {
       const Point3& a = mesh.points[key[0]];
       const Point3& b = mesh.points[key[1]];
       const Point3& c = mesh.points[key[2]];
       const Point3 centroid{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3};
       const Point3 n = cross(sub(b, a), sub(c, a));
-      const double area = std::sqrt(dot(n, n)) / 2;
-      Index found = kNoIndex;
+      area = std::sqrt(dot(n, n)) / 2;
       for (Index f : grid.candidates(centroid)) {
         const FacetGeometry& g = facets[f];
         const auto off_plane = [&](const Point3& p) { return std::fabs(dot(g.normal, p) - g.offset) > tolerance; };
         if (off_plane(a) || off_plane(b) || off_plane(c)) continue;
-        if (!g.contains(centroid)) continue;
-        found = f;
-        break;
+        if (g.contains(centroid)) return f;
       }
+      return kNoIndex;
+    };
+    for (const auto& [key, tet] : boundary) {
+      double area = 0;
+      const Index found = find_facet(key, area);
       if (found == kNoIndex) {
         ++report.num_faces_off_input;
         problems.add(face_name(key) + " of tet " + std::to_string(tet) + ": boundary face on no input facet");
       } else {
+        covered[found] += area;
+        report.covered_area += area;
+      }
+    }
+    // An internal facet inside one region has tetrahedra of that region on both sides: its faces are interior
+    // faces that lie on it.
+    for (const auto& [key, tet] : interior) {
+      double area = 0;
+      const Index found = find_facet(key, area);
+      if (found != kNoIndex) {
+        ++report.num_interior_faces_on_input;
         covered[found] += area;
         report.covered_area += area;
       }

@@ -94,6 +94,7 @@ std::string to_json(const CheckReport& r) {
     o.raw("reference_volume_method", json_string(r.reference_volume_method));
     o.number("volume_relative_error", r.volume_relative_error);
     o.count("num_faces_off_input", r.num_faces_off_input);
+    o.count("num_interior_faces_on_input", r.num_interior_faces_on_input);
     o.count("num_faces_given", r.num_faces_given);
     o.number("facet_area", r.facet_area);
     o.number("covered_area", r.covered_area);
@@ -146,7 +147,8 @@ std::string to_text(const CheckReport& r) {
   }
   out << "\n";
   if (r.has_reference) {
-    out << "conformity: " << r.num_faces_off_input << " boundary faces on no input facet; facet area "
+    out << "conformity: " << r.num_faces_off_input << " boundary faces on no input facet, "
+        << r.num_interior_faces_on_input << " interior faces on an internal facet; facet area "
         << short_number(r.facet_area) << ", covered " << short_number(r.covered_area) << "; "
         << r.num_miscovered_facets << " of " << r.facets.size()
         << " facets miscovered (max relative error " << short_number(r.max_facet_area_relative_error) << ")\n";

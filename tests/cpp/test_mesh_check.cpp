@@ -166,6 +166,21 @@ TEST(MeshCheck, RegionInterfaceNeedsAnInternalFacet) {
   EXPECT_FALSE(r.ok);
 }
 
+TEST(MeshCheck, InternalFacetInsideOneRegionIsCoveredByInteriorFaces) {
+  // The diagonal plane x = y through the cube: Kuhn's tetrahedra have faces (0, 3, 7) and (0, 4, 7) on it.
+  Plc plc = cube_plc();
+  Facet internal;
+  internal.polygons.push_back({0, 3, 7, 4});
+  plc.facets.push_back(internal);
+  const CheckReport r = check_mesh(kuhn_cube(), &plc);
+  EXPECT_EQ(r.num_interior_faces_on_input, 2u);
+  ASSERT_EQ(r.facets.size(), 7u);
+  EXPECT_NEAR(r.facets[6].area, std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(r.facets[6].covered_area, std::sqrt(2.0), 1e-15);
+  EXPECT_EQ(r.reference_volume_method.rfind("unsupported", 0), 0u);  // internal facet: non-manifold edges
+  EXPECT_TRUE(r.ok) << to_text(r);
+}
+
 TEST(MeshCheck, ReferenceVolumeOfNestedAndDisjointShells) {
   Plc plc;
   plc.vertices = cube_points(1);

@@ -64,6 +64,8 @@ struct CheckReport {
   std::string reference_volume_method;
   double volume_relative_error = 0;        // |mesh_volume - reference_volume| / reference_volume; NaN when unknown
   std::size_t num_faces_off_input = 0;     // boundary faces on no input facet
+  std::size_t num_interior_faces_on_input = 0;  // faces between two tets of one region that lie on an input facet
+                                                // (internal facets inside a region); they count as covering it
   std::size_t num_faces_given = 0;         // TetMesh::faces listed by the mesh (not used for the checks)
   double facet_area = 0;                   // total area of the input facets
   double covered_area = 0;                 // total area of boundary faces found on a facet
