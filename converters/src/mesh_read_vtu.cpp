@@ -1,6 +1,7 @@
 // VTU reader for the files QualMesh writes: VTK XML UnstructuredGrid, one Piece, ASCII DataArrays ("binary" and
 // "appended" data are not read). Keeps tetrahedra (VTK_TETRA = 10, node order as in the file) and the "region"
-// cell array (0 when absent); triangles (VTK_TRIANGLE = 5) become faces with marker 0; other cells are refused.
+// cell array (0 when absent); triangles (VTK_TRIANGLE = 5) become faces with marker 0; quadratic tetrahedra and
+// triangles (24, 22) are read as their corners; vertex and line cells are skipped; other cells are refused.
 // Not a general XML parser: it finds the <Points>, <Cells> and <CellData> blocks and their DataArrays.
 #include <algorithm>
 #include <cstdlib>
@@ -67,16 +68,18 @@ class VtuReader {
       }
       begin = end;
       const int type = static_cast<int>(types->values[cell]);
-      if (type == 10 && nodes.size() == 4) {
+      if ((type == 10 && nodes.size() == 4) || (type == 24 && nodes.size() == 10)) {
         mesh.tets.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
         mesh.tet_region.push_back(region ? static_cast<int>(region->values[cell]) : 0);
-      } else if (type == 5 && nodes.size() == 3) {
+      } else if ((type == 5 && nodes.size() == 3) || (type == 22 && nodes.size() == 6)) {
         mesh.faces.push_back({nodes[0], nodes[1], nodes[2]});
         mesh.face_facet.push_back(-1);
         mesh.face_marker.push_back(0);
+      } else if (type == 1 || type == 2 || type == 3 || type == 4 || type == 21) {
+        // Vertices, poly-vertices, lines, poly-lines, quadratic edges: not part of a tetrahedral mesh; skipped.
       } else {
         fail(ErrorCode::Unsupported, "cell " + std::to_string(cell) + " of VTK type " + std::to_string(type) +
-                                         " (only tetrahedra and triangles are read)", types->line);
+                                         " (only tetrahedra, triangles, vertices and lines are read)", types->line);
       }
     }
     return mesh;

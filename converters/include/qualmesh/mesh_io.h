@@ -3,8 +3,11 @@
 //
 // Orientation: QualMesh writes tetrahedra positively oriented, (p1-p0) x (p2-p0) . (p3-p0) > 0, which is what
 // VTK, Gmsh, Medit and CalculiX C3D4 expect (C3D4's node order is SMESH's [1,0,2,3], SMESH's being negative).
-// TetGen 1.5.0 (`tetgen -pq2`) writes its tetrahedra positively oriented too. Readers never reorder the nodes of a
-// tetrahedron: a foreign mesh keeps the orientation of its file, so the checker sees it as it is.
+// Conventions measured on the real tools (Debian bookworm): TetGen 1.5.0 (`tetgen -pq2`, fandisk.off and a cube
+// .poly) writes every tetrahedron positively oriented, and its .face triangles with the normal (b-a) x (c-a)
+// pointing INTO the mesh; Gmsh 4.8.4 (`gmsh -3`, OCC box) writes positively oriented tetrahedra and boundary
+// triangles with outward normals. Readers never reorder the nodes of a tetrahedron or triangle: a foreign mesh
+// keeps the orientation of its file, so the checker sees it as it is; writers keep TetMesh's face orientation.
 // Indices are 0-based in TetMesh; every format's 1-based numbering (or TetGen's 0- or 1-based) is converted here.
 // Every writer goes through write_file_atomically: a failure never leaves a half-written file nor clobbers one.
 #pragma once
