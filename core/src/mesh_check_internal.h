@@ -35,15 +35,21 @@ FacetGeometry make_facet_geometry(const Plc& plc, const Facet& facet);
 
 struct ReferenceVolume {
   double volume = 0;   // NaN when unsupported
-  std::string method;  // "closed-shells" or "unsupported: REASON"
+  std::string method;  // "closed-shells (...)" or "cells (...)"
 };
 
-// The volume enclosed by the PLC's facets: they must form closed, orientable shells (every polygon edge used by
-// exactly two facets). Each shell is oriented consistently by breadth-first search over shared edges, its volume
-// found by the divergence theorem (sum of offset * area / 3), made positive, and signed by its nesting depth among
-// the other shells (winding number of one of its vertices): even depth adds, odd depth (a cavity) subtracts.
-// Limits: internal facets (non-manifold edges), T-junctions between facets, open inputs and volume hole seeds are
-// reported as unsupported.
+// The volume the input encloses, by one of two methods:
+//  - "closed-shells": when every polygon edge is used by exactly two facets and there is no volume hole seed (closed
+//    surfaces: OFF, STL, ...). Each shell is oriented consistently by breadth-first search over shared edges, its
+//    volume found by the divergence theorem (sum of offset * area / 3), made positive, and signed by its nesting
+//    depth among the other shells (winding number of one of its vertices): even depth adds, odd depth (a cavity)
+//    subtracts. This is the CAD reading of nested surfaces.
+//  - "cells": otherwise (internal facets, multi-region .poly, volume hole seeds, open inputs): TetGen's reading.
+//    The domain is every bounded cell of the arrangement of the facets less the cells holding a hole seed; cells
+//    are found by sorting the facets around each edge by angle (see compute_cell_volume in the .cpp). An open input
+//    encloses 0.
+// Limits: facets must meet only along their polygon edges (no T-junctions, no facet ending inside another), and
+// facet hole points are assumed not to open a passage between two cells.
 ReferenceVolume compute_reference_volume(const Plc& plc, const std::vector<FacetGeometry>& facets);
 
 }  // namespace qualmesh::check

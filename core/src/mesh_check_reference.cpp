@@ -173,10 +173,178 @@ FacetGeometry make_facet_geometry(const Plc& plc, const Facet& facet) {
   return g;
 }
 
+namespace {
+
+double solid_angle(const Point3& p, const Point3& pa, const Point3& pb, const Point3& pc) {
+  Point3 a, b, c;
+  for (int k = 0; k < 3; ++k) {
+    a[k] = pa[k] - p[k];
+    b[k] = pb[k] - p[k];
+    c[k] = pc[k] - p[k];
+  }
+  const double la = length(a), lb = length(b), lc = length(c);
+  const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                     a[2] * (b[0] * c[1] - b[1] * c[0]);
+  const double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const double ac = a[0] * c[0] + a[1] * c[1] + a[2] * c[2];
+  const double bc = b[0] * c[0] + b[1] * c[1] + b[2] * c[2];
+  return 2 * std::atan2(det, la * lb * lc + ab * lc + ac * lb + bc * la);
+}
+
+Point3 cross3(const Point3& a, const Point3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot3(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) {
+    for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  }
+  std::size_t find(std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
+// TetGen's semantics for PLCs with internal facets or volume holes: the domain is every bounded cell of the
+// arrangement of the facets, less the cells holding a hole seed. The sides of the facets are grouped into cell
+// boundary components by sorting the facets around each edge by angle (two facets consecutive around an edge face
+// the same cell through the wedge between them). A component's divergence-theorem volume, with normals out of its
+// cell, is positive when it encloses its cell (the cell's outer boundary) and negative when it is the outside of a
+// structure lying in a larger cell (a cavity of that cell, or the outside of everything). A cell's volume is its
+// positive component plus the negative components whose innermost enclosing positive component is it.
+// Limits: facets must meet only along polygon edges (no T-junctions, no facet touching another inside).
+ReferenceVolume compute_cell_volume(const Plc& plc, const std::vector<FacetGeometry>& facets) {
+  const std::size_t num_facets = facets.size();
+  // Directed boundary edges of each facet, oriented so that the facet's filled region lies on their left seen
+  // from +normal.
+  struct Use {
+    std::size_t facet;
+    Index from, to;
+  };
+  std::map<std::pair<Index, Index>, std::vector<Use>> edge_uses;
+  for (std::size_t f = 0; f < num_facets; ++f) {
+    const FacetGeometry& g = facets[f];
+    if (g.degenerate) continue;
+    for (std::size_t l = 0; l < g.loops.size(); ++l) {
+      const int direction = g.winding[l] * (g.depth[l] % 2 == 0 ? 1 : -1);
+      const auto& loop = g.loops[l];
+      for (std::size_t i = 0, n = loop.size(); i < n; ++i) {
+        Index a = loop[i], b = loop[(i + 1) % n];
+        if (direction < 0) std::swap(a, b);
+        if (a != b) edge_uses[{std::min(a, b), std::max(a, b)}].push_back({f, a, b});
+      }
+    }
+  }
+  // Side s of facet f: 2f (+normal side) or 2f+1 (-normal side).
+  UnionFind sides(2 * num_facets);
+  for (const auto& [edge, uses] : edge_uses) {
+    const Point3& u = plc.vertices[edge.first];
+    const Point3& v = plc.vertices[edge.second];
+    Point3 axis{v[0] - u[0], v[1] - u[1], v[2] - u[2]};
+    const double axis_length = length(axis);
+    for (double& c : axis) c /= axis_length;
+    std::vector<std::pair<double, std::size_t>> order;  // angle, use
+    std::vector<Point3> inward(uses.size());
+    for (std::size_t i = 0; i < uses.size(); ++i) {
+      const Point3& a = plc.vertices[uses[i].from];
+      const Point3& b = plc.vertices[uses[i].to];
+      inward[i] = cross3(facets[uses[i].facet].normal, {b[0] - a[0], b[1] - a[1], b[2] - a[2]});
+    }
+    const Point3 x0 = inward[0];
+    const Point3 y0 = cross3(axis, x0);
+    for (std::size_t i = 0; i < uses.size(); ++i) {
+      order.push_back({std::atan2(dot3(inward[i], y0), dot3(inward[i], x0)), i});
+    }
+    std::sort(order.begin(), order.end());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const std::size_t i = order[k].second, j = order[(k + 1) % order.size()].second;
+      // The wedge from facet i to facet j (counterclockwise around the axis).
+      const Point3 ahead = cross3(axis, inward[i]);
+      const Point3 behind = cross3(inward[j], axis);
+      const std::size_t fi = uses[i].facet, fj = uses[j].facet;
+      const std::size_t side_i = 2 * fi + (dot3(facets[fi].normal, ahead) > 0 ? 0 : 1);
+      const std::size_t side_j = 2 * fj + (dot3(facets[fj].normal, behind) > 0 ? 0 : 1);
+      sides.unite(side_i, side_j);
+    }
+  }
+  // Volume of each component, normals out of its cell: the +side's cell sees -normal as outward.
+  std::map<std::size_t, double> component_volume;
+  std::map<std::size_t, std::vector<std::size_t>> component_sides;
+  for (std::size_t f = 0; f < num_facets; ++f) {
+    if (facets[f].degenerate) continue;
+    for (int s = 0; s < 2; ++s) {
+      const std::size_t root = sides.find(2 * f + s);
+      component_volume[root] += (s == 0 ? -1 : 1) * facets[f].offset * facets[f].area / 3;
+      component_sides[root].push_back(2 * f + s);
+    }
+  }
+  const double tiny = 1e-12;
+  double scale = 0;
+  for (const auto& [root, volume] : component_volume) scale = std::max(scale, std::fabs(volume));
+  // Winding number of p with respect to a component (normals out of its cell), skipping facets through p.
+  std::map<std::size_t, std::set<Index>> component_vertices;
+  for (const auto& [root, list] : component_sides) {
+    for (std::size_t side : list) {
+      for (const auto& loop : facets[side / 2].loops) component_vertices[root].insert(loop.begin(), loop.end());
+    }
+  }
+  const auto winding = [&](const Point3& p, std::size_t root) {
+    double total = 0;
+    for (std::size_t side : component_sides[root]) {
+      const FacetGeometry& g = facets[side / 2];
+      const int outward = side % 2 == 0 ? -1 : 1;
+      for (std::size_t l = 0; l < g.loops.size(); ++l) {
+        const int direction = outward * g.winding[l] * (g.depth[l] % 2 == 0 ? 1 : -1);
+        const auto& loop = g.loops[l];
+        for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
+          total += direction * solid_angle(p, plc.vertices[loop[0]], plc.vertices[loop[i]], plc.vertices[loop[i + 1]]);
+        }
+      }
+    }
+    return total / (4 * 3.14159265358979323846);
+  };
+  std::vector<std::size_t> positive, negative;
+  for (const auto& [root, volume] : component_volume) {
+    if (volume > tiny * scale) positive.push_back(root);
+    else if (volume < -tiny * scale) negative.push_back(root);
+  }
+  // The innermost positive component (bounded cell) around p, or none; components through `on_vertex` (the
+  // vertex p is) are not candidates.
+  const auto cell_of = [&](const Point3& p, Index on_vertex) {
+    std::size_t best = static_cast<std::size_t>(-1);
+    for (std::size_t root : positive) {
+      if (on_vertex != kNoIndex && component_vertices[root].count(on_vertex)) continue;
+      if (std::fabs(winding(p, root)) > 0.5 &&
+          (best == static_cast<std::size_t>(-1) || component_volume[root] < component_volume[best])) {
+        best = root;
+      }
+    }
+    return best;
+  };
+  std::set<std::size_t> hole_cells;
+  for (const Point3& h : plc.holes) hole_cells.insert(cell_of(h, kNoIndex));
+  double volume = 0;
+  for (std::size_t root : positive) {
+    if (!hole_cells.count(root)) volume += component_volume[root];
+  }
+  for (std::size_t root : negative) {
+    const FacetGeometry& g = facets[component_sides[root].front() / 2];
+    const Index probe = g.loops[0][0];
+    const std::size_t cell = cell_of(plc.vertices[probe], probe);
+    if (cell != static_cast<std::size_t>(-1) && !hole_cells.count(cell)) volume += component_volume[root];
+  }
+  return {volume, "cells (" + std::to_string(positive.size()) + " bounded cells, " +
+                      std::to_string(plc.holes.size()) + " hole seeds; internal facets or holes)"};
+}
+
+}  // namespace
+
 ReferenceVolume compute_reference_volume(const Plc& plc, const std::vector<FacetGeometry>& facets) {
   ReferenceVolume result;
   const double nan = std::nan("");
-  if (!plc.holes.empty()) return {nan, "unsupported: volume hole seeds"};
   // Each facet's edges, oriented so that the facet turns positively around its normal (outer loops forward,
   // loops at odd depth backward). Edge (a < b) -> uses: (facet, +1 when traversed a -> b).
   std::map<std::pair<Index, Index>, std::vector<std::pair<std::size_t, int>>> edge_uses;
@@ -194,13 +362,11 @@ ReferenceVolume compute_reference_volume(const Plc& plc, const std::vector<Facet
       }
     }
   }
+  bool manifold = plc.holes.empty();
   for (const auto& [edge, uses] : edge_uses) {
-    if (uses.size() != 2 || uses[0].first == uses[1].first) {
-      return {nan, "unsupported: edge (" + std::to_string(edge.first) + ", " + std::to_string(edge.second) +
-                       ") is used by " + std::to_string(uses.size()) +
-                       " facet sides (open input, internal facets or T-junctions)"};
-    }
+    manifold = manifold && uses.size() == 2 && uses[0].first != uses[1].first;
   }
+  if (!manifold) return compute_cell_volume(plc, facets);
   // Facet adjacency with the orientation relation: s_g = -s_f * d_f * d_g.
   std::vector<std::vector<std::pair<std::size_t, int>>> adjacent(facets.size());
   for (const auto& [edge, uses] : edge_uses) {
@@ -229,8 +395,7 @@ ReferenceVolume compute_reference_volume(const Plc& plc, const std::vector<Facet
           sign[g] = wanted;
           stack.push_back(g);
         } else if (sign[g] != wanted) {
-          return {nan, "unsupported: facets " + std::to_string(f) + " and " + std::to_string(g) +
-                           " cannot be oriented consistently (non-orientable shell)"};
+          return compute_cell_volume(plc, facets);  // non-orientable: the cells do not need orientations
         }
       }
     }

@@ -177,7 +177,9 @@ TEST(MeshCheck, InternalFacetInsideOneRegionIsCoveredByInteriorFaces) {
   ASSERT_EQ(r.facets.size(), 7u);
   EXPECT_NEAR(r.facets[6].area, std::sqrt(2.0), 1e-15);
   EXPECT_NEAR(r.facets[6].covered_area, std::sqrt(2.0), 1e-15);
-  EXPECT_EQ(r.reference_volume_method.rfind("unsupported", 0), 0u);  // internal facet: non-manifold edges
+  // Internal facet: non-manifold edges, so the volume comes from the cells of the arrangement.
+  EXPECT_EQ(r.reference_volume_method.rfind("cells", 0), 0u) << r.reference_volume_method;
+  EXPECT_NEAR(r.reference_volume, 1.0, 1e-15);
   EXPECT_TRUE(r.ok) << to_text(r);
 }
 
@@ -202,13 +204,43 @@ TEST(MeshCheck, ReferenceVolumeOfNestedAndDisjointShells) {
   EXPECT_NEAR(r.reference_volume, 1.0 - 0.125 + 8.0, 1e-14) << r.reference_volume_method;
 }
 
-TEST(MeshCheck, OpenInputVolumeIsUnsupported) {
+TEST(MeshCheck, OpenInputEnclosesNothing) {
   Plc plc = cube_plc();
   plc.facets.pop_back();
   const CheckReport r = check_mesh(kuhn_cube(), &plc);
-  EXPECT_TRUE(std::isnan(r.reference_volume));
-  EXPECT_EQ(r.reference_volume_method.rfind("unsupported", 0), 0u);
+  EXPECT_EQ(r.reference_volume, 0.0) << r.reference_volume_method;
   EXPECT_EQ(r.num_faces_off_input, 2u);  // the two faces on the missing facet
+  EXPECT_FALSE(r.ok);
+}
+
+TEST(MeshCheck, TwoRegionsAndAVolumeHole) {
+  // Three unit cubes in a row along x (internal facets at x = 1 and x = 2); a hole seed in the last one.
+  Plc plc;
+  for (int i = 0; i < 4; ++i) {
+    for (int v = 0; v < 4; ++v) plc.vertices.push_back({double(i), double(v & 1), double((v >> 1) & 1)});
+  }
+  // Vertex (i, y, z) has id 4i + y + 2z.
+  const auto id = [](int i, int y, int z) { return static_cast<Index>(4 * i + y + 2 * z); };
+  const auto add = [&plc](std::vector<Index> loop) {
+    Facet f;
+    f.polygons.push_back(loop);
+    plc.facets.push_back(f);
+  };
+  for (int i = 0; i < 4; ++i) add({id(i, 0, 0), id(i, 1, 0), id(i, 1, 1), id(i, 0, 1)});
+  for (int i = 0; i < 3; ++i) {
+    add({id(i, 0, 0), id(i + 1, 0, 0), id(i + 1, 0, 1), id(i, 0, 1)});
+    add({id(i, 1, 0), id(i + 1, 1, 0), id(i + 1, 1, 1), id(i, 1, 1)});
+    add({id(i, 0, 0), id(i + 1, 0, 0), id(i + 1, 1, 0), id(i, 1, 0)});
+    add({id(i, 0, 1), id(i + 1, 0, 1), id(i + 1, 1, 1), id(i, 1, 1)});
+  }
+  CheckReport r = check_mesh(TetMesh{}, &plc);
+  EXPECT_NEAR(r.reference_volume, 3.0, 1e-14) << r.reference_volume_method;
+  plc.holes.push_back({2.5, 0.5, 0.5});
+  r = check_mesh(TetMesh{}, &plc);
+  EXPECT_NEAR(r.reference_volume, 2.0, 1e-14) << r.reference_volume_method;
+  plc.holes.push_back({1.5, 0.5, 0.5});
+  r = check_mesh(TetMesh{}, &plc);
+  EXPECT_NEAR(r.reference_volume, 1.0, 1e-14) << r.reference_volume_method;
 }
 
 TEST(MeshCheck, FacetWithAHoleLoopAndAHolePoint) {

@@ -57,10 +57,12 @@ struct CheckReport {
 
   // Conformity to the reference PLC (has_reference false: all below are unset).
   bool has_reference = false;
-  // The volume the input encloses, or NaN when it cannot be found (see reference_volume_method).
+  // The volume the input encloses (NaN, and the volume check skipped, when it cannot be found).
   double reference_volume = 0;
-  // How it was found: "closed-shells" (each shell oriented consistently, signed by nesting depth),
-  // or "unsupported: REASON" (open or non-manifold input, volume hole seeds): the volume check is then skipped.
+  // How it was found: "closed-shells (...)" for closed 2-manifold surfaces without hole seeds (each shell oriented
+  // consistently, signed by nesting depth: an inner shell is a cavity), or "cells (...)" for PLCs with internal
+  // facets or volume hole seeds (TetGen's reading: every bounded cell of the facet arrangement less the cells
+  // holding a hole seed). Limit: facets must meet along whole polygon edges (no T-junctions).
   std::string reference_volume_method;
   double volume_relative_error = 0;        // |mesh_volume - reference_volume| / reference_volume; NaN when unknown
   std::size_t num_faces_off_input = 0;     // boundary faces on no input facet
