@@ -344,7 +344,6 @@ ReferenceVolume compute_cell_volume(const Plc& plc, const std::vector<FacetGeome
 
 ReferenceVolume compute_reference_volume(const Plc& plc, const std::vector<FacetGeometry>& facets) {
   ReferenceVolume result;
-  const double nan = std::nan("");
   // Each facet's edges, oriented so that the facet turns positively around its normal (outer loops forward,
   // loops at odd depth backward). Edge (a < b) -> uses: (facet, +1 when traversed a -> b).
   std::map<std::pair<Index, Index>, std::vector<std::pair<std::size_t, int>>> edge_uses;
