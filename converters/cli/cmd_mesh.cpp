@@ -52,8 +52,12 @@ int run_mesh(const MeshArgs& args) {
   std::printf("insertions:  rule 1 %zu, rule 2 %zu, rule 3 %zu; %zu centres rejected; %zu small-angle skips\n",
               st.num_rule1_insertions, st.num_rule2_insertions, st.num_rule3_insertions,
               st.num_rejected_circumcenters, st.num_skipped_small_angle);
-  std::printf("quality:     max radius-edge %.4g (bound %.4g), min dihedral %.4g deg\n", st.max_radius_edge,
-              args.options.radius_edge_bound, st.min_dihedral_deg);
+  std::printf("quality:     max radius-edge %.4g (bound %.4g), %.4g away from acute input angles; min dihedral %.4g deg\n",
+              st.max_radius_edge, args.options.radius_edge_bound, st.max_radius_edge_away_from_acute,
+              st.min_dihedral_deg);
+  std::printf("above bound: %zu tetrahedra: %zu at acute input angles, %zu given up (centre rejected), %zu other\n",
+              st.num_tets_above_bound, st.num_above_bound_acute, st.num_above_bound_rejected,
+              st.num_above_bound_other);
   std::printf("time (s):    initial %.3f, boundary %.3f, regions %.3f, refinement %.3f, extraction %.3f\n",
               st.seconds_initial, st.seconds_boundary, st.seconds_regions, st.seconds_refinement,
               st.seconds_extraction);

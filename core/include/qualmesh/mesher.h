@@ -12,6 +12,8 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
+#include <cstdint>
 
 #include "qualmesh/plc.h"
 #include "qualmesh/tet_mesh.h"
@@ -58,6 +60,16 @@ struct MeshStats {
   std::size_t num_tets = 0;                   // tetrahedra in the output
   std::size_t num_boundary_faces = 0;         // faces in the output that lie on input facets
   double max_radius_edge = 0;                 // over the output tetrahedra
+  // Output tetrahedra whose radius-edge ratio exceeds rho0, and why each was left (they add up):
+  //   acute:    it touches an acute input angle (MeshResult::tet_touches_acute_angle), Rule 3 skips it;
+  //   rejected: Rule 3 gave up on it: its circumcentre encroaches a subsegment or subfacet whose split was
+  //             refused or capped (8 rejected attempts);
+  //   other:    anything else (numerical: flat on a facet, conflict zone across regions).
+  std::size_t num_tets_above_bound = 0;
+  std::size_t num_above_bound_acute = 0;
+  std::size_t num_above_bound_rejected = 0;
+  std::size_t num_above_bound_other = 0;
+  double max_radius_edge_away_from_acute = 0;  // over the output tetrahedra not touching an acute input angle
   double min_dihedral_deg = 0;                // over the output tetrahedra
   // Wall-clock seconds per stage.
   double seconds_initial = 0;
@@ -76,6 +88,13 @@ enum class MeshStatus {
 struct MeshResult {
   MeshStatus status = MeshStatus::Ok;
   TetMesh mesh;  // positively oriented tets, region attribute per tet, input facet id per boundary/internal face
+  // Per tet of `mesh`: 1 when it touches an acute input angle, i.e. its shortest edge joins two vertices lying on
+  // input elements (input vertex, segment or facet; the smallest one holding the vertex) that meet at an acute
+  // input angle. The one definition is InputComplex::elements_meet_acute (core/src/refine/complex.h): two
+  // elements, neither containing the other, sharing an input vertex where the segment-segment or segment-facet
+  // angle, or the facet-facet dihedral angle, is below 90 degrees; an input vertex counts through the segments and
+  // facets incident to it. Rule 3 does not split these (the short edge is forced by the input).
+  std::vector<std::uint8_t> tet_touches_acute_angle;
   MeshStats stats;
 };
 

@@ -83,6 +83,110 @@ bool InputComplex::elements_meet_at_acute_vertex(const std::vector<Index>& a, co
   return false;
 }
 
+double InputComplex::segment_facet_angle_deg(Index v, Index segment, Index facet) const {
+  const Segment& seg = segments[segment];
+  const Point3 d = sub(plc->vertices[seg.a == v ? seg.b : seg.a], plc->vertices[v]);
+  const Point3& n = frames[facet].normal;
+  const double h = dot(d, n);
+  const Point3 proj{d[0] - h * n[0], d[1] - h * n[1], d[2] - h * n[2]};
+  double best = 180;
+  for (const auto& loop : plc->facets[facet].polygons) {
+    if (loop.size() < 3) continue;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      if (loop[k] != v) continue;
+      const Point3 p = sub(plc->vertices[loop[(k + loop.size() - 1) % loop.size()]], plc->vertices[v]);
+      const Point3 q = sub(plc->vertices[loop[(k + 1) % loop.size()]], plc->vertices[v]);
+      const bool inside = dot(cross(p, proj), cross(p, q)) >= 0 && dot(cross(proj, q), cross(p, q)) >= 0;
+      const double angle = inside ? std::abs(90.0 - angle_deg(d, n)) : std::min(angle_deg(d, p), angle_deg(d, q));
+      best = std::min(best, angle);
+    }
+  }
+  return best;
+}
+
+bool InputComplex::element_contains_vertex(ElementRef e, Index v) const {
+  switch (e.kind) {
+    case ElementKind::Vertex: return e.id == v;
+    case ElementKind::Segment: return segments[e.id].a == v || segments[e.id].b == v;
+    case ElementKind::Facet: return std::binary_search(facet_vertices[e.id].begin(), facet_vertices[e.id].end(), v);
+  }
+  return false;
+}
+
+bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
+  if (a.kind == ElementKind::Vertex && b.kind == ElementKind::Vertex && a.id == b.id) return false;
+  if (b.kind == ElementKind::Vertex) std::swap(a, b);
+  if (a.kind == ElementKind::Vertex) {
+    // An input vertex: through the segments and facets incident to it, unless b contains it.
+    if (element_contains_vertex(b, a.id)) return false;
+    for (Index s : vertex_segments[a.id])
+      if (elements_meet_acute({ElementKind::Segment, s}, b)) return true;
+    for (Index f : vertex_facets[a.id])
+      if (elements_meet_acute({ElementKind::Facet, f}, b)) return true;
+    return false;
+  }
+  if (a.kind == b.kind && a.id == b.id) return false;
+  if (b.kind < a.kind || (a.kind == b.kind && b.id < a.id)) std::swap(a, b);
+  const std::uint64_t k = (std::uint64_t(a.id) << 33) | (std::uint64_t(b.id) << 2) |
+                          (std::uint64_t(a.kind) << 1) | std::uint64_t(b.kind == ElementKind::Facet);
+  const std::uint64_t cache_key = k ^ (std::uint64_t(a.kind == ElementKind::Facet) << 63);
+  if (auto it = acute_pair_cache.find(cache_key); it != acute_pair_cache.end()) return it->second;
+  bool acute = false;
+  auto seg_dir = [&](Index s, Index v) {
+    const Segment& seg = segments[s];
+    return sub(plc->vertices[seg.a == v ? seg.b : seg.a], plc->vertices[v]);
+  };
+  if (a.kind == ElementKind::Segment && b.kind == ElementKind::Segment) {
+    const Segment& sa = segments[a.id];
+    const Segment& sb = segments[b.id];
+    for (Index v : {sa.a, sa.b})
+      if ((v == sb.a || v == sb.b) && angle_deg(seg_dir(a.id, v), seg_dir(b.id, v)) < kAcuteDeg) acute = true;
+  } else if (a.kind == ElementKind::Segment) {  // segment a, facet b
+    if (!facet_has_segment(b.id, a.id)) {
+      const Segment& sa = segments[a.id];
+      const auto& fv = facet_vertices[b.id];
+      for (Index v : {sa.a, sa.b})
+        if (std::binary_search(fv.begin(), fv.end(), v) && segment_facet_angle_deg(v, a.id, b.id) < kAcuteDeg)
+          acute = true;
+    }
+  } else {  // two facets
+    const auto& fa = facet_vertices[a.id];
+    const auto& fb = facet_vertices[b.id];
+    for (Index v : fa) {
+      if (acute) break;
+      if (!std::binary_search(fb.begin(), fb.end(), v)) continue;
+      bool share_segment = false;
+      for (Index s : vertex_segments[v]) share_segment |= facet_has_segment(a.id, s) && facet_has_segment(b.id, s);
+      for (Index s : vertex_segments[v]) {
+        const bool in_a = facet_has_segment(a.id, s), in_b = facet_has_segment(b.id, s);
+        if (share_segment && !(in_a && in_b)) continue;  // facets through a common segment: the dihedral decides
+        if (in_a && in_b) {
+          // Shared segment: dihedral angle from the inward directions.
+          const Segment& seg = segments[s];
+          const Point3 o = plc->vertices[seg.a];
+          const Point3 dir = normalized(sub(plc->vertices[seg.b], o));
+          auto inward = [&](Index f) {
+            Point3 centroid{0, 0, 0};
+            for (Index w : facet_vertices[f])
+              for (int c = 0; c < 3; ++c) centroid[c] += plc->vertices[w][c] / double(facet_vertices[f].size());
+            Point3 d = sub(centroid, o);
+            const double t = dot(d, dir);
+            for (int c = 0; c < 3; ++c) d[c] -= t * dir[c];
+            return d;
+          };
+          if (angle_deg(inward(a.id), inward(b.id)) < kAcuteDeg) acute = true;
+        } else if (in_a && !in_b) {
+          if (segment_facet_angle_deg(v, s, b.id) < kAcuteDeg) acute = true;
+        } else if (in_b && !in_a) {
+          if (segment_facet_angle_deg(v, s, a.id) < kAcuteDeg) acute = true;
+        }
+      }
+    }
+  }
+  acute_pair_cache.emplace(cache_key, acute);
+  return acute;
+}
+
 InputComplex build_input_complex(const Plc& plc) {
   InputComplex c;
   c.plc = &plc;

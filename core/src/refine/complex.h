@@ -54,6 +54,29 @@ struct InputComplex {
   const SegmentInFacet* segment_in_facet(Index segment, Index facet) const;
   // Two elements (segment or facet) share an input vertex whose angle between them is acute.
   bool elements_meet_at_acute_vertex(const std::vector<Index>& vertices_a, const std::vector<Index>& vertices_b) const;
+
+  // THE definition of "two input elements meet at an acute input angle" (issue 3; used by Rule 3's skip and by the
+  // output classification, refine_engine.cpp). Elements: an input vertex, a segment or a facet. They meet at an
+  // acute angle when neither contains the other (an element never meets itself) and they share an input vertex v
+  // at which:
+  //   segment-segment: the angle between them is below 90 degrees;
+  //   segment-facet:   the segment makes an angle below 90 degrees with the facet's corner at v (its elevation
+  //                    over the plane when it projects into the corner, else its angle to the nearer corner edge);
+  //   facet-facet:     they share a segment through v with a dihedral angle below 90 degrees, or (sharing no
+  //                    segment through v) a corner edge of one at v meets the other at an acute segment-facet angle.
+  // An input vertex u meets an element E that does not contain it at an acute angle when a segment or facet
+  // incident to u does (two input vertices: when an element of each does), so that the short input edges that a
+  // small angle forces between input vertices count too.
+  enum class ElementKind : std::uint8_t { Vertex, Segment, Facet };
+  struct ElementRef {
+    ElementKind kind;
+    Index id;
+  };
+  bool elements_meet_acute(ElementRef a, ElementRef b) const;
+  bool element_contains_vertex(ElementRef e, Index v) const;
+  // Angle (degrees) between segment s and facet f at their common input vertex v (s not in f).
+  double segment_facet_angle_deg(Index v, Index segment, Index facet) const;
+  mutable std::unordered_map<std::uint64_t, bool> acute_pair_cache;
 };
 
 // Builds the complex. Throws InputError for a facet whose vertices span no plane.

@@ -5,16 +5,19 @@
 // normal pointing out of the tetrahedron it was taken from (for boundary faces: out of the domain).
 #include <algorithm>
 
+#include "qualmesh/quality.h"
+
 #include "refine/refine_state.h"
 
 namespace qualmesh::detail {
 
-TetMesh extract_mesh(MeshState& s) {
+TetMesh extract_mesh(MeshState& s, std::vector<std::uint8_t>& touches_acute) {
   TetMesh mesh;
   std::vector<Index> new_id(s.vertices.size(), kNoIndex);
   struct Tet {
     std::array<Index, 4> v;
     int region;
+    bool acute;
   };
   std::vector<Tet> tets;
   struct Face {
@@ -31,6 +34,23 @@ TetMesh extract_mesh(MeshState& s) {
       new_id[t.v[k]] = 0;
     }
     t.region = region;
+    t.acute = tet_touches_acute_angle(s, t.v);
+    {
+      // Quality audit (MeshStats): radius-edge ratio above rho0, and why Rule 3 left it.
+      const Point3 &p0 = s.point(t.v[0]), &p1 = s.point(t.v[1]), &p2 = s.point(t.v[2]), &p3 = s.point(t.v[3]);
+      const double rho = tet_radius_edge(p0, p1, p2, p3);
+      if (!t.acute) s.stats.max_radius_edge_away_from_acute = std::max(s.stats.max_radius_edge_away_from_acute, rho);
+      if (rho > s.options.radius_edge_bound) {
+        ++s.stats.num_tets_above_bound;
+        if (t.acute) {
+          ++s.stats.num_above_bound_acute;
+        } else if (why_left(s, c) == LeftReason::Rejected) {
+          ++s.stats.num_above_bound_rejected;
+        } else {
+          ++s.stats.num_above_bound_other;
+        }
+      }
+    }
     tets.push_back(t);
     for (int i = 0; i < 4; ++i) {
       const Ch3 n = c->neighbor(i);
@@ -78,6 +98,9 @@ TetMesh extract_mesh(MeshState& s) {
     std::rotate(v.begin(), v.begin() + m, v.end());
   }
   std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.v < b.v; });
+  touches_acute.clear();
+  touches_acute.reserve(tets.size());
+  for (const Tet& t : tets) touches_acute.push_back(t.acute ? 1 : 0);
   mesh.tets.reserve(tets.size());
   mesh.tet_region.reserve(tets.size());
   for (const Tet& t : tets) {

@@ -95,7 +95,7 @@ MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCa
 
   t = Clock::now();
   begin_stage(s, MeshStage::Extraction);
-  result.mesh = detail::extract_mesh(s);
+  result.mesh = detail::extract_mesh(s, result.tet_touches_acute_angle);
   MeshStats& st = s.stats;
   st.num_tets = result.mesh.tets.size();
   st.num_boundary_faces = result.mesh.faces.size();

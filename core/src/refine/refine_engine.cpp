@@ -25,6 +25,7 @@
 // the last-resort stop.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "qualmesh/error.h"
 #include "refine/refine_state.h"
@@ -158,6 +159,40 @@ double sq_dist(const Point3& a, const Point3& b) {
 
 enum class TetVerdict { Good, Skinny, TooLarge, ForcedBySmallAngle };
 
+}  // namespace
+
+InputComplex::ElementRef host_element(const MeshState& s, Index v, bool* has) {
+  const VertexRecord& r = s.vertices[v];
+  *has = true;
+  switch (r.kind) {
+    case VertexKind::Input: return {InputComplex::ElementKind::Vertex, v};
+    case VertexKind::Segment: return {InputComplex::ElementKind::Segment, r.host};
+    case VertexKind::Facet: return {InputComplex::ElementKind::Facet, r.host};
+    case VertexKind::Volume: break;
+  }
+  *has = false;
+  return {InputComplex::ElementKind::Vertex, kNoIndex};
+}
+
+bool shortest_edge_forced_by_acute_angle(const MeshState& s, Index u, Index w) {
+  bool hu = false, hw = false;
+  const InputComplex::ElementRef eu = host_element(s, u, &hu), ew = host_element(s, w, &hw);
+  return hu && hw && s.complex.elements_meet_acute(eu, ew);
+}
+
+bool tet_touches_acute_angle(const MeshState& s, const std::array<Index, 4>& ids) {
+  double sq_min = std::numeric_limits<double>::infinity();
+  int ea = 0, eb = 1;
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) {
+      const double d = sq_dist(s.point(ids[a]), s.point(ids[b]));
+      if (d < sq_min) sq_min = d, ea = a, eb = b;
+    }
+  return shortest_edge_forced_by_acute_angle(s, ids[ea], ids[eb]);
+}
+
+namespace {
+
 TetVerdict judge_tet(MeshState& s, Ch3 c) {
   Index ids[4];
   for (int k = 0; k < 4; ++k) ids[k] = c->vertex(k)->info();
@@ -178,14 +213,8 @@ TetVerdict judge_tet(MeshState& s, Ch3 c) {
   if (max_volume > 0 && CGAL::volume(p0, p1, p2, p3) > max_volume) return TetVerdict::TooLarge;
   const double sq_r = CGAL::squared_radius(p0, p1, p2, p3);
   if (!(sq_r > s.sq_radius_edge_bound * sq_min)) return TetVerdict::Good;
-  // Shortest edge forced by an acute input angle: both ends on input elements that meet at an acute apex.
-  const Index u = ids[emin_a], w = ids[emin_b];
-  if (s.vertices[u].kind != VertexKind::Volume && s.vertices[w].kind != VertexKind::Volume) {
-    std::vector<Index> su, sw;
-    const std::vector<Index>* eu = host_element_vertices(s, u, su);
-    const std::vector<Index>* ew = host_element_vertices(s, w, sw);
-    if (eu && ew && s.complex.elements_meet_at_acute_vertex(*eu, *ew)) return TetVerdict::ForcedBySmallAngle;
-  }
+  // Shortest edge forced by an acute input angle (the one definition: tet_touches_acute_angle()).
+  if (shortest_edge_forced_by_acute_angle(s, ids[emin_a], ids[emin_b])) return TetVerdict::ForcedBySmallAngle;
   return TetVerdict::Skinny;
 }
 
@@ -214,6 +243,7 @@ void enqueue_subfacet_if_encroached(MeshState& s, Index facet, const std::array<
 void enqueue_tet_if_bad(MeshState& s, Ch3 c) {
   if (s.tr.is_infinite(c) || c->info().region < 0) return;
   const TetVerdict verdict = judge_tet(s, c);
+  if (verdict == TetVerdict::ForcedBySmallAngle) ++s.stats.num_skipped_small_angle;
   if (verdict == TetVerdict::Skinny || verdict == TetVerdict::TooLarge)
     s.tet_queue.push_back({{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()}, 0});
 }
@@ -492,6 +522,35 @@ void process_tet(MeshState& s, const TetEntry& e) {
   }
 }
 
+
+// Dry run of process_tet on a cell left above rho0 once the queues are empty: what stops its circumcentre now.
+LeftReason why_left_impl(MeshState& s, Ch3 c) {
+  const TetVerdict verdict = judge_tet(s, c);
+  if (verdict == TetVerdict::ForcedBySmallAngle) return LeftReason::AcuteAngle;
+  Index ids[4];
+  for (int k = 0; k < 4; ++k) ids[k] = c->vertex(k)->info();
+  for (int i = 0; i < 4; ++i) {
+    const Index facet = face_subfacet(s, c, i);
+    if (facet != kNoIndex && vertex_on_facet(s, ids[i], facet)) return LeftReason::Other;  // flat on a facet
+  }
+  const KPoint3 z = CGAL::circumcenter(s.kpoint(ids[0]), s.kpoint(ids[1]), s.kpoint(ids[2]), s.kpoint(ids[3]));
+  ConflictZone cz;
+  if (!find_conflict_zone(s, z, c, cz)) return LeftReason::Other;
+  Candidates cand;
+  collect_candidates(s, cz, cand);
+  for (const auto& seg : cand.subsegments)
+    if (strictly_encroaches(s.kpoint(seg[1]), s.kpoint(seg[2]), z)) return LeftReason::Rejected;
+  for (const auto& f : cand.subfacets)
+    if (strictly_encroaches(s.kpoint(f[1]), s.kpoint(f[2]), s.kpoint(f[3]), z)) return LeftReason::Rejected;
+  for (const Facet3& f : cz.internal) {
+    Index fi[3];
+    for (int k = 0; k < 3; ++k) fi[k] = f.first->vertex((f.second + 1 + k) & 3)->info();
+    if (fi[0] == kNoIndex || fi[1] == kNoIndex || fi[2] == kNoIndex) continue;
+    if (subfacet_of(s, fi[0], fi[1], fi[2]) != kNoIndex) return LeftReason::Rejected;
+  }
+  return LeftReason::Other;
+}
+
 void report(MeshState& s, double fraction) {
   if (!s.progress) return;
   ProgressEvent event;
@@ -502,6 +561,8 @@ void report(MeshState& s, double fraction) {
 }
 
 }  // namespace
+
+LeftReason why_left(MeshState& s, Ch3 c) { return why_left_impl(s, c); }
 
 Index face_subfacet(const MeshState& s, Ch3 c, int i) {
   Index ids[3];

@@ -155,12 +155,21 @@ void enqueue_all_tets(MeshState& s);
 // Which facet (if any) the triangulation face (c, i) is a subfacet of.
 Index face_subfacet(const MeshState& s, Ch3 c, int i);
 
+// The one definition of "touches an acute input angle" (MeshResult::tet_touches_acute_angle): the shortest edge
+// of the tetrahedron joins vertices on input elements that meet at an acute angle (InputComplex::elements_meet_acute).
+bool tet_touches_acute_angle(const MeshState& s, const std::array<Index, 4>& ids);
+bool shortest_edge_forced_by_acute_angle(const MeshState& s, Index u, Index w);
+// Why an in-domain cell of radius-edge ratio above rho0 was left by Rule 3 (a dry run of its processing).
+enum class LeftReason { AcuteAngle, Rejected, Other };
+LeftReason why_left(MeshState& s, Ch3 c);
+
 // --- regions (regions.cpp) ---
 void compute_regions(MeshState& s);
 // Floods the cells created by boundary insertions since the last flood; calls `on_cell` for each assigned cell.
 void flood_pending_regions(MeshState& s, std::vector<Ch3>& assigned);
 
 // --- extraction (extract.cpp) ---
-TetMesh extract_mesh(MeshState& s);
+// touches_acute: per output tet, MeshResult::tet_touches_acute_angle; the MeshStats counts above the bound.
+TetMesh extract_mesh(MeshState& s, std::vector<std::uint8_t>& touches_acute);
 
 }  // namespace qualmesh::detail
