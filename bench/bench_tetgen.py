@@ -27,9 +27,16 @@ DEFAULT_MODELS = [ROOT / "examples" / "l_bracket.poly"] + [SHARED / n for n in (
     "slit-1.smesh", "cubes.off")]
 
 
+TIMEOUT_S = 600
+
+
 def timed(cmd, cwd):
+    """Runs cmd; returns (seconds, CompletedProcess). A run past TIMEOUT_S counts as a failure (returncode 124)."""
     start = time.perf_counter()
-    proc = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
+    try:
+        proc = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        proc = subprocess.CompletedProcess(cmd, 124, "", f"timed out after {TIMEOUT_S} s")
     return time.perf_counter() - start, proc
 
 
@@ -47,8 +54,12 @@ def main():
     parser.add_argument("--qualmesh", default=str(ROOT / "build" / "converters" / "qualmesh"))
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--radius-edge", default="2.0")
+    parser.add_argument("--timeout", type=int, default=600, help="seconds per run before it counts as failed")
     parser.add_argument("models", nargs="*")
     args = parser.parse_args()
+    args.qualmesh = str(Path(args.qualmesh).resolve())
+    global TIMEOUT_S
+    TIMEOUT_S = args.timeout
     if shutil.which("tetgen") is None:
         sys.exit("tetgen is not installed (apt-get install tetgen)")
     models = [Path(m) for m in args.models] or [m for m in DEFAULT_MODELS if m.exists()]
@@ -61,6 +72,14 @@ def main():
             if conv.returncode != 0:
                 rows.append((model.name, None, None, f"convert failed: {conv.stderr.strip()[:80]}"))
                 continue
+            # TetGen 1.5.0 aborts on some merged polygonal facets (collinear vertices on a polygon): then both tools
+            # get the unmerged triangles instead, so that they still see the same PLC.
+            probe = subprocess.run(["tetgen", "-pQ", poly.name], cwd=tmp, capture_output=True, text=True)
+            name = model.name
+            if probe.returncode != 0:
+                subprocess.run([args.qualmesh, "convert", "--keep-triangles", str(model), str(poly)],
+                               capture_output=True, text=True, check=True)
+                name += " (triangles)"
             best_q = best_t = float("inf")
             q_out = t_out = None
             for _ in range(args.repeat):
@@ -78,7 +97,7 @@ def main():
                     break
                 best_t = min(best_t, dt)
                 t_out = count_node_file(Path(tmp) / (model.stem + ".1.node"))
-            rows.append((model.name, (best_q, q_out), (best_t, t_out), None))
+            rows.append((name, (best_q, q_out), (best_t, t_out), None))
 
     print(f"| model | QualMesh s | TetGen s | time ratio | QualMesh vertices | TetGen vertices | vertex ratio |")
     print("|---|---|---|---|---|---|---|")
@@ -89,7 +108,7 @@ def main():
         if not isinstance(q[1], str) or "failed" in q[1] or not isinstance(t[1], int):
             print(f"| {name} | {q[1] if isinstance(q[1], str) and 'failed' in q[1] else ''} | {t[1]} | | | | |")
             continue
-        m = re.search(r"vertices:\s+(\d+)", q[1])
+        m = re.search(r"output:\s+(\d+) vertices", q[1])
         qv = int(m.group(1)) if m else 0
         print(f"| {name} | {q[0]:.3f} | {t[0]:.3f} | {q[0] / t[0]:.2f} | {qv} | {t[1]} | "
               f"{qv / t[1] if t[1] else float('nan'):.2f} |")
