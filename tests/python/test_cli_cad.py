@@ -1,0 +1,72 @@
+"""End-to-end: CAD and OpenSCAD inputs through the `qualmesh` command line (issue 5's CLI part).
+
+`qualmesh info MODEL` must list solids, faces, edges, the validation result and the input angles; a model that
+cannot be read is refused with exit code 2 and a message naming the file; `qualmesh mesh MODEL -o deck.inp` writes a
+CalculiX deck with one ELSET per solid, read back by meshio.
+"""
+import json
+import re
+
+from conftest import require_module, shared_file
+
+
+def test_info_step_lists_solids_faces_edges_and_angles(run_qualmesh):
+    step = shared_file("data/cad/part.step")
+    proc = run_qualmesh("info", step)
+    assert proc.returncode == 0, proc.stderr
+    out = proc.stdout
+    # MANIFEST: part.step has 1 solid, 26 faces, 70 edges, 46 vertices.
+    assert "STEP model: 1 solids, 26 faces, 70 edges, 46 vertices" in out
+    assert "validation:   ok" in out
+    assert "closed:       yes" in out
+    m = re.search(r"facet-facet\s+min\s+([0-9.]+) deg", out)
+    assert m, out
+    # MANIFEST: min feature dihedral of part.step is 84.5 deg (approximate, from a coarse tessellation).
+    assert 80.0 < float(m.group(1)) <= 90.0
+
+
+def test_info_two_solids_become_two_regions(run_qualmesh):
+    beam = shared_file("data/cad/fcFEM_Stacked_Beam_Example.FCStd")
+    proc = run_qualmesh("info", beam)
+    assert proc.returncode == 0, proc.stderr
+    assert "2 solids" in proc.stdout
+    assert re.search(r"regions:\s+2 seeds", proc.stdout), proc.stdout
+
+
+def test_garbage_step_is_refused_with_exit_code_2(run_qualmesh, tmp_path):
+    bad = tmp_path / "broken.step"
+    bad.write_text("ISO-10303-21;\nHEADER;\nthis is not STEP\n")
+    proc = run_qualmesh("info", bad)
+    assert proc.returncode == 2
+    assert "broken.step" in proc.stderr and "error[" in proc.stderr
+
+
+def test_mesh_fcstd_writes_calculix_deck_with_one_elset_per_solid(run_qualmesh, tmp_path):
+    meshio = require_module("meshio")
+    beam = shared_file("data/cad/fcFEM_Stacked_Beam_Example.FCStd")
+    deck = tmp_path / "beam.inp"
+    proc = run_qualmesh("mesh", beam, "-o", deck)
+    assert proc.returncode == 0, proc.stderr
+    text = deck.read_text()
+    assert "ELSET=Region1" in text and "ELSET=Region2" in text
+    mesh = meshio.read(deck, file_format="abaqus")
+    tets = sum(len(block.data) for block in mesh.cells if block.type == "tetra")
+    m = re.search(r"output:\s+(\d+) vertices \(\d+ Steiner\), (\d+) tetrahedra", proc.stdout)
+    assert m, proc.stdout
+    assert tets == int(m.group(2))
+    assert len(mesh.points) == int(m.group(1))
+
+
+def test_mesh_step_conforms_to_its_cad_model(run_qualmesh, tmp_path):
+    step = shared_file("data/cad/part.step")
+    out = tmp_path / "part.vtu"
+    proc = run_qualmesh("mesh", step, "-o", out, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    check = run_qualmesh("check", out, "--ref", step, "--json")
+    report = json.loads(check.stdout)
+    assert report["num_tets"] > 1000
+    assert report["num_nonpositive_tets"] == 0
+    assert report["num_faces_off_input"] == 0
+    assert report["volume_relative_error"] < 1e-9
+    assert report["max_facet_area_relative_error"] < 1e-9
+    assert check.returncode == 0, check.stdout[:2000]
