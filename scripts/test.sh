@@ -11,6 +11,7 @@ echo "== sanitizer build (ASan + UBSan) =="
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DQUALMESH_SANITIZE=ON >/dev/null
 cmake --build build-asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  LSAN_OPTIONS=suppressions="$PWD/tests/sanitizer/lsan.supp" \
   ctest --test-dir build-asan -L cpp -LE slow --output-on-failure -j"$jobs"
 
 echo "== release build, full suite =="
