@@ -383,7 +383,7 @@ void split_subfacet(MeshState& s, Index facet, const std::array<Index, 3>& abc) 
     }
   }
   const Point3 p = to_point3(center);
-  if (!rejected && !facet_point_in_domain(s, facet, p)) {
+  if (!rejected && !facet_point_in_domain(s, facet, p, abc[0])) {
     // The centre left the facet without encroaching a subsegment in floating point: split the facet's boundary
     // subsegments of this subfacet instead (Rule 1), which is what the exact geometry asks for.
     for (int i = 0; i < 3; ++i) {
@@ -414,6 +414,17 @@ void process_subfacet(MeshState& s, const SubfacetEntry& e) {
   const KPoint3 a = s.kpoint(abc[0]), b = s.kpoint(abc[1]), c = s.kpoint(abc[2]);
   if (!encroached && e.has_point && strictly_encroaches(a, b, c, to_kpoint(e.point))) encroached = true;
   if (!encroached && !e.forced) return;
+  // Small input angles: a subfacet that is present but encroached only by a vertex on an input element meeting its
+  // facet at an acute angle is left alone (splitting it would make the two elements encroach each other without
+  // end; conformity only needs it present). Shewchuk, "Mesh generation for domains with small angles".
+  if (encroached && !missing && !e.forced && enc != kNoIndex) {
+    bool has = false;
+    const InputComplex::ElementRef he = host_element(s, enc, &has);
+    if (has && s.complex.elements_meet_acute(he, {InputComplex::ElementKind::Facet, e.facet})) {
+      ++s.stats.num_skipped_small_angle;
+      return;
+    }
+  }
   if (missing) {
     // Cocircular subfacets: the 3D triangulation may have chosen the other diagonal; both are Delaunay.
     std::vector<std::array<Index, 3>> flipped;
@@ -427,7 +438,7 @@ void process_subfacet(MeshState& s, const SubfacetEntry& e) {
   const bool has_encroacher = enc != kNoIndex || e.has_point;
   if (has_encroacher) {
     const Point3 q = enc != kNoIndex ? s.point(enc) : e.point;
-    if (auto h = subfacet_containing_projection(s, e.facet, q)) {
+    if (auto h = subfacet_containing_projection(s, e.facet, q, abc[0])) {
       if (strictly_encroaches(s.kpoint((*h)[0]), s.kpoint((*h)[1]), s.kpoint((*h)[2]), to_kpoint(q))) target = *h;
     }
   }
@@ -435,6 +446,11 @@ void process_subfacet(MeshState& s, const SubfacetEntry& e) {
 }
 
 // --- Rule 3 -----------------------------------------------------------------------------------------------------
+
+void give_up(MeshState& s, std::array<Index, 4> v) {
+  std::sort(v.begin(), v.end());
+  s.given_up.push_back(v);
+}
 
 void process_tet(MeshState& s, const TetEntry& e) {
   Ch3 c;
@@ -465,6 +481,7 @@ void process_tet(MeshState& s, const TetEntry& e) {
         if (is_subfacet(s, common, f[0], f[1], f[2])) s.subfacet_queue.push_back({common, f, false, {}, true});
       }
       if (e.attempts < 8) s.tet_queue.push_back({e.vertices, e.attempts + 1});
+      else give_up(s, e.vertices);
       return;
     }
   }
@@ -519,37 +536,11 @@ void process_tet(MeshState& s, const TetEntry& e) {
     TetEntry again = e;
     ++again.attempts;
     s.tet_queue.push_back(again);
+  } else {
+    give_up(s, e.vertices);
   }
 }
 
-
-// Dry run of process_tet on a cell left above rho0 once the queues are empty: what stops its circumcentre now.
-LeftReason why_left_impl(MeshState& s, Ch3 c) {
-  const TetVerdict verdict = judge_tet(s, c);
-  if (verdict == TetVerdict::ForcedBySmallAngle) return LeftReason::AcuteAngle;
-  Index ids[4];
-  for (int k = 0; k < 4; ++k) ids[k] = c->vertex(k)->info();
-  for (int i = 0; i < 4; ++i) {
-    const Index facet = face_subfacet(s, c, i);
-    if (facet != kNoIndex && vertex_on_facet(s, ids[i], facet)) return LeftReason::Other;  // flat on a facet
-  }
-  const KPoint3 z = CGAL::circumcenter(s.kpoint(ids[0]), s.kpoint(ids[1]), s.kpoint(ids[2]), s.kpoint(ids[3]));
-  ConflictZone cz;
-  if (!find_conflict_zone(s, z, c, cz)) return LeftReason::Other;
-  Candidates cand;
-  collect_candidates(s, cz, cand);
-  for (const auto& seg : cand.subsegments)
-    if (strictly_encroaches(s.kpoint(seg[1]), s.kpoint(seg[2]), z)) return LeftReason::Rejected;
-  for (const auto& f : cand.subfacets)
-    if (strictly_encroaches(s.kpoint(f[1]), s.kpoint(f[2]), s.kpoint(f[3]), z)) return LeftReason::Rejected;
-  for (const Facet3& f : cz.internal) {
-    Index fi[3];
-    for (int k = 0; k < 3; ++k) fi[k] = f.first->vertex((f.second + 1 + k) & 3)->info();
-    if (fi[0] == kNoIndex || fi[1] == kNoIndex || fi[2] == kNoIndex) continue;
-    if (subfacet_of(s, fi[0], fi[1], fi[2]) != kNoIndex) return LeftReason::Rejected;
-  }
-  return LeftReason::Other;
-}
 
 void report(MeshState& s, double fraction) {
   if (!s.progress) return;
@@ -562,7 +553,19 @@ void report(MeshState& s, double fraction) {
 
 }  // namespace
 
-LeftReason why_left(MeshState& s, Ch3 c) { return why_left_impl(s, c); }
+void sort_given_up(MeshState& s) {
+  std::sort(s.given_up.begin(), s.given_up.end());
+  s.given_up.erase(std::unique(s.given_up.begin(), s.given_up.end()), s.given_up.end());
+}
+
+LeftReason why_left(MeshState& s, Ch3 c) {
+  const TetVerdict verdict = judge_tet(s, c);
+  if (verdict == TetVerdict::ForcedBySmallAngle) return LeftReason::AcuteAngle;
+  std::array<Index, 4> v;
+  for (int k = 0; k < 4; ++k) v[k] = c->vertex(k)->info();
+  std::sort(v.begin(), v.end());
+  return std::binary_search(s.given_up.begin(), s.given_up.end(), v) ? LeftReason::Rejected : LeftReason::Other;
+}
 
 Index face_subfacet(const MeshState& s, Ch3 c, int i) {
   Index ids[3];

@@ -76,6 +76,8 @@ struct RegionInfo {
 };
 
 struct MeshState {
+  // Tetrahedra (sorted vertex ids) Rule 3 gave up on after 8 rejected circumcentres (MeshStats' "rejected").
+  std::vector<std::array<Index, 4>> given_up;
   const Plc* plc = nullptr;
   MeshOptions options;
   // Derived from the options.
@@ -136,9 +138,11 @@ void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::arra
 // Is (a, b, c) an in-domain subfacet of f?
 bool is_subfacet(const MeshState& s, Index facet, Index a, Index b, Index c);
 // The in-domain subfacet of f containing the projection of `p` (Lemma 3.5), if any.
-std::optional<std::array<Index, 3>> subfacet_containing_projection(const MeshState& s, Index facet, const Point3& p);
+// `hint`: a vertex of f near p (kNoIndex: none), where the 2D walk starts.
+std::optional<std::array<Index, 3>> subfacet_containing_projection(const MeshState& s, Index facet, const Point3& p,
+                                                                   Index hint = kNoIndex);
 // Is the 2D location of point p (on f's plane) inside f's domain?
-bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p);
+bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p, Index hint = kNoIndex);
 // Tries to flip 2D edges of subfacet (a, b, c) so that f's subfacets match the 3D triangulation's choice among
 // cocircular configurations; appends the new subfacets and returns true when it flipped.
 bool flip_subfacet_to_match(MeshState& s, Index facet, const std::array<Index, 3>& abc,
@@ -159,8 +163,10 @@ Index face_subfacet(const MeshState& s, Ch3 c, int i);
 // of the tetrahedron joins vertices on input elements that meet at an acute angle (InputComplex::elements_meet_acute).
 bool tet_touches_acute_angle(const MeshState& s, const std::array<Index, 4>& ids);
 bool shortest_edge_forced_by_acute_angle(const MeshState& s, Index u, Index w);
-// Why an in-domain cell of radius-edge ratio above rho0 was left by Rule 3 (a dry run of its processing).
+// Why an in-domain cell of radius-edge ratio above rho0 was left by Rule 3: skipped for an acute input angle,
+// given up after rejected circumcentres (MeshState::given_up; call sort_given_up() first), or other.
 enum class LeftReason { AcuteAngle, Rejected, Other };
+void sort_given_up(MeshState& s);
 LeftReason why_left(MeshState& s, Ch3 c);
 
 // --- regions (regions.cpp) ---

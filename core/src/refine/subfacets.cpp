@@ -209,20 +209,23 @@ void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::arra
   update_star(s, facet, fm.cdt, vh, new_faces);
 }
 
-std::optional<std::array<Index, 3>> subfacet_containing_projection(const MeshState& s, Index facet, const Point3& p) {
+std::optional<std::array<Index, 3>> subfacet_containing_projection(const MeshState& s, Index facet, const Point3& p,
+                                                                   Index hint) {
   const FacetMesh& fm = s.facets[facet];
   Cdt2::Locate_type lt;
   int li = 0;
-  Fh2 fh = fm.cdt.locate(local_point(s, facet, p), lt, li);
+  const Vh2 hv = hint == kNoIndex ? Vh2() : fm.find(hint);
+  Fh2 fh = fm.cdt.locate(local_point(s, facet, p), lt, li, hv == Vh2() ? Fh2() : hv->face());
   if (fh == Fh2() || fm.cdt.is_infinite(fh) || !fh->info().in_domain()) return std::nullopt;
   return std::array<Index, 3>{fh->vertex(0)->info(), fh->vertex(1)->info(), fh->vertex(2)->info()};
 }
 
-bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p) {
+bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p, Index hint) {
   const FacetMesh& fm = s.facets[facet];
   Cdt2::Locate_type lt;
   int li = 0;
-  Fh2 fh = fm.cdt.locate(local_point(s, facet, p), lt, li);
+  const Vh2 hv = hint == kNoIndex ? Vh2() : fm.find(hint);
+  Fh2 fh = fm.cdt.locate(local_point(s, facet, p), lt, li, hv == Vh2() ? Fh2() : hv->face());
   if (fh == Fh2()) return false;
   if (!fm.cdt.is_infinite(fh) && fh->info().in_domain()) return true;
   if (lt == Cdt2::EDGE) {
