@@ -315,11 +315,13 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
       }
     }
     // An internal facet inside one region has tetrahedra of that region on both sides: its faces are interior
-    // faces that lie on it.
+    // faces that lie on it. A facet that boundary faces cover is not such a facet: an interior face found on it
+    // (within the tolerance) is a face of a flat tetrahedron, not coverage.
+    const std::vector<double> boundary_covered = covered;
     for (const auto& [key, tet] : interior) {
       double area = 0;
       const Index found = find_facet(key, area);
-      if (found != kNoIndex) {
+      if (found != kNoIndex && boundary_covered[found] == 0) {
         ++report.num_interior_faces_on_input;
         covered[found] += area;
         report.covered_area += area;

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
 #include "qualmesh/error.h"
 
 namespace qualmesh::detail {
@@ -45,6 +47,51 @@ Point3 facet_normal(const Plc& plc, const Facet& facet) {
 }
 
 constexpr double kAcuteDeg = 90.0 - 1e-6;
+
+// Plane groups: facets joined through shared segments to facets exactly coplanar with them (exact orientation
+// predicate on input vertices) share a group id. A flat cell of near-cocircular Steiner points may span two such
+// facets (a CAD quad split into two triangles), so the engine asks about the plane, not one facet.
+void compute_plane_groups(const Plc& plc, InputComplex& c) {
+  const std::size_t nf = plc.facets.size();
+  std::vector<Index> parent(nf);
+  for (Index f = 0; f < nf; ++f) parent[f] = f;
+  const auto find = [&](Index f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  const auto kp = [&](Index v) {
+    const Point3& p = plc.vertices[v];
+    return CGAL::Epick::Point_3(p[0], p[1], p[2]);
+  };
+  // Three non-collinear input vertices of each facet (none: the facet stays alone).
+  std::vector<std::array<Index, 3>> basis(nf, {kNoIndex, kNoIndex, kNoIndex});
+  for (Index f = 0; f < nf; ++f) {
+    const auto& vs = c.facet_vertices[f];
+    if (vs.size() < 3) continue;
+    for (std::size_t k = 2; k < vs.size(); ++k) {
+      if (!CGAL::collinear(kp(vs[0]), kp(vs[1]), kp(vs[k]))) {
+        basis[f] = {vs[0], vs[1], vs[k]};
+        break;
+      }
+    }
+  }
+  const auto coplanar = [&](Index f, Index g) {
+    if (basis[f][0] == kNoIndex || basis[g][0] == kNoIndex) return false;
+    const auto a = kp(basis[f][0]), b = kp(basis[f][1]), d = kp(basis[f][2]);
+    for (Index v : c.facet_vertices[g])
+      if (CGAL::orientation(a, b, d, kp(v)) != CGAL::COPLANAR) return false;
+    return true;
+  };
+  for (const auto& list : c.segment_facets) {
+    for (std::size_t i = 0; i < list.size(); ++i)
+      for (std::size_t j = i + 1; j < list.size(); ++j) {
+        const Index f = find(list[i].facet), g = find(list[j].facet);
+        if (f != g && coplanar(list[i].facet, list[j].facet)) parent[std::max(f, g)] = std::min(f, g);
+      }
+  }
+  c.plane_group.resize(nf);
+  for (Index f = 0; f < nf; ++f) c.plane_group[f] = find(f);
+}
 
 }  // namespace
 
@@ -262,6 +309,8 @@ InputComplex build_input_complex(const Plc& plc) {
   }
   for (auto& list : c.segment_facets)
     std::sort(list.begin(), list.end(), [](const SegmentInFacet& x, const SegmentInFacet& y) { return x.facet < y.facet; });
+
+  compute_plane_groups(plc, c);
 
   // Acute input angles (Section 3.7 assumes none): segment-segment at a shared vertex, segment-facet at a shared
   // vertex (segment not in the facet), facet-facet along a shared segment.

@@ -41,6 +41,7 @@ struct InputComplex {
   std::vector<PlaneFrame> frames;                          // per facet
   std::vector<std::vector<Index>> facet_vertices;          // per facet, sorted input vertex ids
   std::vector<std::uint8_t> acute_vertex;                  // input vertex is the apex of an acute input angle
+  std::vector<Index> plane_group;  // per facet: smallest facet id of its exactly coplanar, segment-connected group
 
   static std::uint64_t key(Index a, Index b) {
     if (a > b) std::swap(a, b);

@@ -193,6 +193,16 @@ bool tet_touches_acute_angle(const MeshState& s, const std::array<Index, 4>& ids
 
 namespace {
 
+// The facet holding all four vertices of cell c (a face of c is its subfacet and the opposite vertex lies on it
+// too), or kNoIndex: a flat tetrahedron of near-cocircular facet points that rounding made slightly non-coplanar.
+Index facet_under_flat_cell(const MeshState& s, Ch3 c) {
+  for (int i = 0; i < 4; ++i) {
+    const Index facet = face_subfacet(s, c, i);
+    if (facet != kNoIndex && vertex_on_plane(s, c->vertex(i)->info(), s.complex.plane_group[facet])) return facet;
+  }
+  return kNoIndex;
+}
+
 TetVerdict judge_tet(MeshState& s, Ch3 c) {
   Index ids[4];
   for (int k = 0; k < 4; ++k) ids[k] = c->vertex(k)->info();
@@ -211,6 +221,11 @@ TetVerdict judge_tet(MeshState& s, Ch3 c) {
   if (region >= 0 && s.regions[region].max_volume > 0)
     max_volume = max_volume > 0 ? std::min(max_volume, s.regions[region].max_volume) : s.regions[region].max_volume;
   if (max_volume > 0 && CGAL::volume(p0, p1, p2, p3) > max_volume) return TetVerdict::TooLarge;
+  // A flat tetrahedron lying on one plane of facets: four near-cocircular points of a facet whose circumsphere,
+  // ill-defined, may pass the radius-edge test; never excused by an acute angle. Rule 2 removes it (process_tet).
+  const double volume = std::fabs(CGAL::volume(p0, p1, p2, p3));
+  if (volume < 1e-6 * sq_max * std::sqrt(sq_max) && facet_under_flat_cell(s, c) != kNoIndex)
+    return TetVerdict::Skinny;
   const double sq_r = CGAL::squared_radius(p0, p1, p2, p3);
   if (!(sq_r > s.sq_radius_edge_bound * sq_min)) return TetVerdict::Good;
   // Shortest edge forced by an acute input angle (the one definition: tet_touches_acute_angle()).
@@ -469,16 +484,14 @@ void process_tet(MeshState& s, const TetEntry& e) {
   // A flat tetrahedron whose four vertices lie on one facet (near-cocircular points of a tilted facet, which
   // rounding made slightly non-coplanar): its circumcentre is meaningless; split its subfacets instead (Rule 2).
   {
-    Index common = kNoIndex;
-    for (int i = 0; i < 4 && common == kNoIndex; ++i) {
-      const Index facet = face_subfacet(s, c, i);
-      if (facet != kNoIndex && vertex_on_facet(s, v[i], facet)) common = facet;
-    }
+    const Index common = facet_under_flat_cell(s, c);
     if (common != kNoIndex) {
       for (int i = 0; i < 4; ++i) {
+        const Index facet = face_subfacet(s, c, i);
+        if (facet == kNoIndex || s.complex.plane_group[facet] != s.complex.plane_group[common]) continue;
         std::array<Index, 3> f{c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(),
                                c->vertex((i + 3) & 3)->info()};
-        if (is_subfacet(s, common, f[0], f[1], f[2])) s.subfacet_queue.push_back({common, f, false, {}, true});
+        s.subfacet_queue.push_back({facet, f, false, {}, true});
       }
       if (e.attempts < 8) s.tet_queue.push_back({e.vertices, e.attempts + 1});
       else give_up(s, e.vertices);

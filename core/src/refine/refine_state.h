@@ -116,6 +116,8 @@ struct MeshState {
 bool vertex_on_segment(const MeshState& s, Index v, Index segment);
 // Is vertex v on facet f (symbolically)?
 bool vertex_on_facet(const MeshState& s, Index v, Index facet);
+// Is vertex v on a facet of plane group `group` (InputComplex::plane_group), symbolically?
+bool vertex_on_plane(const MeshState& s, Index v, Index group);
 // The vertex after / before v along segment `segment` (v must be on it), kNoIndex at the end.
 Index next_on_segment(const MeshState& s, Index segment, Index v);
 // The segment of which (u, v) is a subsegment (consecutive vertices), or kNoIndex.

@@ -39,6 +39,24 @@ bool vertex_on_facet(const MeshState& s, Index v, Index facet) {
   return false;
 }
 
+bool vertex_on_plane(const MeshState& s, Index v, Index group) {
+  const VertexRecord& r = s.vertices[v];
+  const auto& g = s.complex.plane_group;
+  switch (r.kind) {
+    case VertexKind::Facet: return g[r.host] == group;
+    case VertexKind::Segment:
+      for (const SegmentInFacet& sf : s.complex.segment_facets[r.host])
+        if (g[sf.facet] == group) return true;
+      return false;
+    case VertexKind::Input:
+      for (Index f : s.complex.vertex_facets[v])
+        if (g[f] == group) return true;
+      return false;
+    case VertexKind::Volume: return false;
+  }
+  return false;
+}
+
 Index next_on_segment(const MeshState& s, Index segment, Index v) {
   const Segment& seg = s.complex.segments[segment];
   const SegmentChain& chain = s.chains[segment];
