@@ -1,5 +1,6 @@
-// `qualmesh mesh IN -o OUT [--radius-edge 2.0] [--max-edge L] [--max-volume V]`: Delaunay refinement of the input
-// PLC (Cheng & Dey, QUALMESH steps 1-2: Rules 1-3), written to OUT in the format its extension names. A progress bar
+// `qualmesh mesh IN -o OUT [--radius-edge 2.0] [--max-edge L] [--max-volume V] [--sliver-angle 15] [--omega 0.2]
+// [--delta 0.45] [--no-pump]`: weighted Delaunay refinement of the input PLC (Cheng & Dey, QUALMESH: Rules 1-4,
+// then pumping; --no-pump stops after Rules 1-3), written to OUT in the format its extension names. A progress bar
 // on stderr when stderr is a terminal (silent otherwise), then a short summary on stdout: counts, quality figures
 // and time per stage. Exit 2 for bad input or usage; nothing is written then.
 #include <unistd.h>
@@ -24,9 +25,11 @@ struct MeshArgs {
   InputOptions input_options;
   MeshOptions options;
   bool verbose = false;
+  bool no_pump = false;
 };
 
-int run_mesh(const MeshArgs& args) {
+int run_mesh(MeshArgs& args) {
+  if (args.no_pump) args.options.pump = false;
   const Plc plc = load_input(args.input, args.input_options);
   const bool tty = isatty(fileno(stderr)) != 0;
   ProgressCallback progress;
@@ -58,9 +61,19 @@ int run_mesh(const MeshArgs& args) {
   std::printf("above bound: %zu tetrahedra: %zu at acute input angles, %zu given up (centre rejected), %zu other\n",
               st.num_tets_above_bound, st.num_above_bound_acute, st.num_above_bound_rejected,
               st.num_above_bound_other);
-  std::printf("time (s):    initial %.3f, boundary %.3f, regions %.3f, refinement %.3f, extraction %.3f\n",
+  if (args.options.pump) {
+    std::printf("rule 4:      %zu weighted-encroached elements split, %zu vertices added\n",
+                st.num_rule4_encroachments, st.num_rule4_vertices);
+    std::printf("pumping:     slivers (min dihedral < %.4g deg) %zu before, %zu after; min dihedral %.4g -> %.4g deg\n",
+                args.options.sliver_angle_deg, st.num_slivers_before_pumping, st.num_slivers_after_pumping,
+                st.min_dihedral_before_pumping_deg, st.min_dihedral_deg);
+    std::printf("weights:     %zu vertices pumped (%zu moves, %zu refused); max weight %.4g, max weight/cap %.4g\n",
+                st.num_vertices_pumped, st.num_pump_moves, st.num_pump_rejected, st.max_weight,
+                st.max_weight_cap_ratio);
+  }
+  std::printf("time (s):    initial %.3f, boundary %.3f, regions %.3f, refinement %.3f, pumping %.3f, extraction %.3f\n",
               st.seconds_initial, st.seconds_boundary, st.seconds_regions, st.seconds_refinement,
-              st.seconds_extraction);
+              st.seconds_pumping, st.seconds_extraction);
   if (result.status == MeshStatus::VertexLimitReached)
     std::printf("status:      stopped at the vertex limit (%zu)\n", args.options.max_vertices);
   std::fflush(stdout);
@@ -71,7 +84,7 @@ int run_mesh(const MeshArgs& args) {
 
 void register_mesh_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<MeshArgs>();
-  CLI::App* command = app.add_subcommand("mesh", "Quality tetrahedral mesh of a PLC (Delaunay refinement, Rules 1-3)");
+  CLI::App* command = app.add_subcommand("mesh", "Quality tetrahedral mesh of a PLC (weighted Delaunay refinement, Rules 1-4 and pumping)");
   command->add_option("input", args->input, "Input model (.poly .smesh .off .stl .obj .mesh)")->required();
   command->add_option("-o,--output", args->output, "Output mesh (.vtu .node .msh .mesh .inp)")->required();
   add_input_options(*command, args->input_options);
@@ -80,6 +93,14 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
   command->add_option("--max-edge", args->options.max_edge_length, "Longest edge allowed (default: none)");
   command->add_option("--max-volume", args->options.max_volume, "Largest tetrahedron volume (default: none)");
   command->add_option("--max-vertices", args->options.max_vertices, "Safety stop (default 50,000,000)");
+  command->add_option("--sliver-angle", args->options.sliver_angle_deg,
+                      "A tetrahedron with a smaller dihedral angle (degrees) is a sliver (default 15)");
+  command->add_option("--omega", args->options.omega,
+                      "omega0: Rule 4 tests, and pumping caps, weights at omega0^2 f(v)^2 (default 0.2)");
+  command->add_option("--delta", args->options.delta,
+                      "Pumping caps weights at delta^2 N(v)^2, N: nearest-vertex distance; below 0.5 (default 0.45)");
+  command->add_flag("--no-pump", args->no_pump,
+                    "Plain Delaunay refinement: no Rule 4, no pumping (all weights zero)");
   command->add_flag("-v,--verbose", args->verbose, "Log the stages on stderr");
   command->callback([args, &exit_code] { exit_code = run_mesh(*args); });
 }

@@ -167,6 +167,7 @@ TEST_P(RefineRho, UnitBox) {
   PlcBuilder b;
   b.box({0, 0, 0}, {1, 1, 1});
   qualmesh::MeshOptions o;
+  o.pump = false;  // Rules 1-3 only: the Delaunay check below is unweighted (pumping: test_pump.cpp)
   o.radius_edge_bound = GetParam();
   const auto r = qualmesh::mesh_plc(b.plc, o);
   check_mesh_properties(b.plc, r, GetParam(), {1.0, 6.0});
@@ -176,6 +177,7 @@ TEST_P(RefineRho, FlatBoxWithSizeLimit) {
   PlcBuilder b;
   b.box({0, 0, 0}, {3, 1, 0.25});
   qualmesh::MeshOptions o;
+  o.pump = false;  // Rules 1-3 only: the Delaunay check below is unweighted (pumping: test_pump.cpp)
   o.radius_edge_bound = GetParam();
   o.max_edge_length = 0.3;
   const auto r = qualmesh::mesh_plc(b.plc, o);
@@ -190,6 +192,7 @@ TEST_P(RefineRho, FlatBoxWithSizeLimit) {
 TEST_P(RefineRho, LShape) {
   const Plc plc = l_shape();
   qualmesh::MeshOptions o;
+  o.pump = false;  // Rules 1-3 only: the Delaunay check below is unweighted (pumping: test_pump.cpp)
   o.radius_edge_bound = GetParam();
   const auto r = qualmesh::mesh_plc(plc, o);
   check_mesh_properties(plc, r, GetParam(), {3.0, 2 * 3.0 + 8.0});
@@ -201,6 +204,7 @@ TEST_P(RefineRho, BoxWithBoxHole) {
   b.box({1, 1, 1}, {2, 2, 2});
   b.plc.holes.push_back({1.5, 1.5, 1.5});
   qualmesh::MeshOptions o;
+  o.pump = false;  // Rules 1-3 only: the Delaunay check below is unweighted (pumping: test_pump.cpp)
   o.radius_edge_bound = GetParam();
   const auto r = qualmesh::mesh_plc(b.plc, o);
   check_mesh_properties(b.plc, r, GetParam(), {26.0, 60.0});
@@ -214,6 +218,7 @@ TEST_P(RefineRho, StackedBoxesWithRegions) {
   b.plc.regions.push_back({{0.5, 0.5, 1.5}, 9, 0.01});
   ASSERT_EQ(b.plc.facets.size(), 11u);
   qualmesh::MeshOptions o;
+  o.pump = false;  // Rules 1-3 only: the Delaunay check below is unweighted (pumping: test_pump.cpp)
   o.radius_edge_bound = GetParam();
   const auto r = qualmesh::mesh_plc(b.plc, o);
   check_mesh_properties(b.plc, r, GetParam(), {2.0, 11.0});
@@ -245,6 +250,7 @@ TEST_P(RefineRho, GridAlignedCluster) {
     for (int j = 0; j < 2; ++j)
       for (int k = 0; k < 2; ++k) b.box({double(i), double(j), double(k)}, {i + 1.0, j + 1.0, k + 1.0});
   qualmesh::MeshOptions o;
+  o.pump = false;  // Rules 1-3 only: the Delaunay check below is unweighted (pumping: test_pump.cpp)
   o.radius_edge_bound = GetParam();
   const auto r = qualmesh::mesh_plc(b.plc, o);
   check_mesh_properties(b.plc, r, GetParam(), {12.0, double(b.plc.facets.size())});
@@ -255,6 +261,7 @@ INSTANTIATE_TEST_SUITE_P(Bounds, RefineRho, ::testing::Values(2.0, 1.5));
 TEST(Refine, SizeLimitsAndDeterminism) {
   const Plc plc = l_shape();
   qualmesh::MeshOptions o;
+  o.pump = false;  // Rules 1-3 only: the Delaunay check below is unweighted (pumping: test_pump.cpp)
   o.max_volume = 0.002;
   const auto a = qualmesh::mesh_plc(plc, o);
   const auto b = qualmesh::mesh_plc(plc, o);

@@ -1,9 +1,10 @@
-// The QualMesh mesher, step 1 and 2 of QUALMESH (Cheng & Dey, "Quality Meshing with Weighted Delaunay
+// The QualMesh mesher, steps 1-3 of QUALMESH (Cheng & Dey, "Quality Meshing with Weighted Delaunay
 // Refinement", Section 3.7): the Delaunay triangulation of the input vertices, then Delaunay refinement by Rule 1
 // (encroached subsegments), Rule 2 (encroached subfacets) and Rule 3 (tetrahedra of radius-edge ratio above rho0),
 // plus a size field (maximum edge length and volume). The result conforms to the input: every input segment and
-// facet is a union of mesh edges and faces (Theorem 7.2), and the mesh is Delaunay (all weights are zero here;
-// pumping, step 3, is a later stage).
+// facet is a union of mesh edges and faces (Theorem 7.2). Then Rule 4 (weighted encroachment) and step 3, pumping:
+// vertices of slivers get weights that remove slivers without adding points (Theorem 7.3); the mesh is weighted
+// Delaunay (regular) with TetMesh::weights, and plain Delaunay with MeshOptions::pump = false.
 //
 // mesh_plc() mutates nothing but its result; it never prints and never exits: progress and log lines go through the
 // callbacks. Bad input (a PLC whose vertices span no volume, constraints that cross) throws InputError.
@@ -32,9 +33,23 @@ struct MeshOptions {
   double max_volume = 0;
   // Safety stop: refinement ends (MeshStatus::VertexLimitReached) when the triangulation holds this many vertices.
   std::size_t max_vertices = 50'000'000;
+
+  // Sliver removal (paper Section 3.7: Rule 4 and step 3, pumping; Theorem 7.3).
+  // pump = false gives plain Delaunay refinement (Rules 1-3 only, all weights zero), for comparison.
+  bool pump = true;
+  // A tetrahedron inside the domain is a sliver when its radius-edge ratio is at most rho0 and its smallest
+  // dihedral angle is below this many degrees (the practical form of the paper's sigma = V/L^3 <= sigma0). Rule 4
+  // and pumping work on the vertices of slivers. Default chosen by measurement (issue 4).
+  double sliver_angle_deg = 15.0;
+  // omega0 of Section 3.3: a vertex v is tested for weighted encroachment (Rule 4) with weight omega0^2 f(v)^2,
+  // and pumped within [0, omega0^2 f(v)^2] (f: local feature size). Dimensionless, in (0, 1).
+  double omega = 0.2;
+  // Pumping also keeps each weight at most delta^2 N(v)^2 (N(v): distance from v to its nearest vertex);
+  // delta < 1/2 keeps the weighted balls disjoint, so no vertex is ever hidden. Dimensionless, in (0, 0.5).
+  double delta = 0.45;
 };
 
-enum class MeshStage { Initial, Boundary, Refinement, Regions, Extraction };
+enum class MeshStage { Initial, Boundary, Refinement, Regions, Pumping, Extraction };
 
 // Short lower-case name of a stage ("boundary", ...).
 const char* to_string(MeshStage stage);
@@ -71,11 +86,25 @@ struct MeshStats {
   std::size_t num_above_bound_other = 0;
   double max_radius_edge_away_from_acute = 0;  // over the output tetrahedra not touching an acute input angle
   double min_dihedral_deg = 0;                // over the output tetrahedra
+  // Rule 4 and pumping (zero when MeshOptions::pump is false). Slivers: MeshOptions::sliver_angle_deg.
+  std::size_t num_rule4_encroachments = 0;    // subsegments/subfacets Rule 4 found weighted-encroached and queued
+  std::size_t num_rule4_vertices = 0;         // vertices inserted (Rules 1-3) while draining those
+  std::size_t num_vertices_before_pumping = 0; // triangulation vertices when pumping starts (after Rule 4)
+  std::size_t num_vertices_after_pumping = 0;  // and when it ends: pumping adds and removes none
+  std::size_t num_slivers_before_pumping = 0; // in-domain slivers after refinement (Rules 1-4)
+  std::size_t num_slivers_after_pumping = 0;  // in-domain slivers in the output
+  std::size_t num_vertices_pumped = 0;        // vertices whose weight ended nonzero
+  std::size_t num_pump_moves = 0;             // accepted weight changes (a vertex may be pumped more than once)
+  std::size_t num_pump_rejected = 0;          // best weights refused (conformity, region or hidden-vertex check)
+  double max_weight_cap_ratio = 0;            // max over vertices of weight / min(omega0^2 f^2, delta^2 N^2)
+  double max_weight = 0;                      // largest weight (model units squared)
+  double min_dihedral_before_pumping_deg = 0; // over in-domain tetrahedra after refinement
   // Wall-clock seconds per stage.
   double seconds_initial = 0;
   double seconds_boundary = 0;
   double seconds_regions = 0;
   double seconds_refinement = 0;
+  double seconds_pumping = 0;  // Rule 4 rounds and pumping
   double seconds_extraction = 0;
 };
 

@@ -78,6 +78,10 @@ TetMesh extract_mesh(MeshState& s, std::vector<std::uint8_t>& touches_acute) {
     if (new_id[v] == kNoIndex) continue;
     new_id[v] = next++;
     mesh.points.push_back(s.vertices[v].point);
+    // Pumping (pump.cpp) leaves weights on the triangulation's vertices; all zero without it.
+    const double w = s.vertices[v].handle->point().weight();
+    if (w != 0 && mesh.weights.empty()) mesh.weights.assign(mesh.points.size() - 1, 0.0);
+    if (!mesh.weights.empty()) mesh.weights.push_back(w);
   }
   for (Tet& t : tets)
     for (Index& v : t.v) v = new_id[v];

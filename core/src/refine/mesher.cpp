@@ -4,6 +4,8 @@
 //   Boundary    Rules 1 and 2 until no subsegment or subfacet is encroached or missing (the boundary conforms);
 //   Regions     flood fill of the domain's regions (regions.cpp);
 //   Refinement  Rules 1-3 in priority order (refine_engine.cpp);
+//   Pumping     Rule 4 rounds (rule4.cpp), then step 3, pumping the vertices of slivers (pump.cpp); skipped with
+//               MeshOptions::pump = false;
 //   Extraction  the TetMesh and its quality figures (extract.cpp).
 #include "qualmesh/mesher.h"
 
@@ -21,6 +23,7 @@ const char* to_string(MeshStage stage) {
     case MeshStage::Boundary: return "boundary";
     case MeshStage::Refinement: return "refinement";
     case MeshStage::Regions: return "regions";
+    case MeshStage::Pumping: return "pumping";
     case MeshStage::Extraction: return "extraction";
   }
   return "?";
@@ -85,6 +88,14 @@ MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCa
       detail::flood_pending_regions(s, assigned);
     }
     s.stats.seconds_refinement = seconds_since(t);
+
+    if (options.pump && !s.vertex_limit_reached) {
+      t = Clock::now();
+      begin_stage(s, MeshStage::Pumping);
+      detail::apply_rule4(s);
+      if (!s.vertex_limit_reached) detail::pump_slivers(s);
+      s.stats.seconds_pumping = seconds_since(t);
+    }
   } else {
     detail::compute_regions(s);
   }

@@ -18,6 +18,7 @@
 
 #include "cgal_types.h"
 #include "qualmesh/mesher.h"
+#include "local_feature_size.h"
 #include "refine/complex.h"
 
 namespace qualmesh::detail {
@@ -98,6 +99,11 @@ struct MeshState {
   std::deque<SubfacetEntry> subfacet_queue;      // Rule 2
   std::deque<TetEntry> tet_queue;                // Rule 3
 
+  // Rule 4 and pumping (rule4.cpp, pump.cpp): the local feature size of the input (built on first use) and its
+  // value per vertex (negative: not computed yet).
+  std::unique_ptr<LocalFeatureSize> lfs;
+  std::vector<double> lfs_at;
+
   MeshStats stats;
   ProgressCallback progress;
   LogCallback log;
@@ -170,6 +176,21 @@ bool shortest_edge_forced_by_acute_angle(const MeshState& s, Index u, Index w);
 enum class LeftReason { AcuteAngle, Rejected, Other };
 void sort_given_up(MeshState& s);
 LeftReason why_left(MeshState& s, Ch3 c);
+
+// The input element hosting vertex v (refine_engine.cpp); *has is false for volume vertices.
+InputComplex::ElementRef host_element(const MeshState& s, Index v, bool* has);
+
+// --- Rule 4 and pumping (rule4.cpp, pump.cpp; paper Sections 3.3, 3.7, 7.2, 7.3) ---
+// f(v), the local feature size at vertex v (paper Section 2), cached per vertex.
+double local_feature_size_at(MeshState& s, Index v);
+// Is finite cell c an in-domain sliver: radius-edge ratio <= rho0 and smallest dihedral angle below
+// MeshOptions::sliver_angle_deg? `min_dihedral_deg` (may be null) gets the cell's smallest dihedral angle.
+bool is_sliver(const MeshState& s, Ch3 c, double* min_dihedral_deg);
+// Rule 4 rounds: weighted encroachment by the vertices of slivers (weight omega0^2 f(v)^2), each round drained by
+// run_refinement(); ends when a round finds nothing or the vertex budget of Rule 4 is spent.
+void apply_rule4(MeshState& s);
+// Step 3: pumps the vertices of slivers, worst sliver first, keeping the triangulation regular and conforming.
+void pump_slivers(MeshState& s);
 
 // --- regions (regions.cpp) ---
 void compute_regions(MeshState& s);

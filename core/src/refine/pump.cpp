@@ -1,0 +1,450 @@
+// Step 3 of QUALMESH, pumping (Cheng & Dey, Section 3.7 step 3 and Section 7.3, after the sliver exudation of
+// Cheng, Dey, Edelsbrunner, Facello and Teng): each vertex v of a sliver gets a weight in
+// [0, min(omega0^2 f(v)^2, delta^2 N(v)^2)] (f: local feature size, N(v): nearest-vertex distance, delta < 1/2 so
+// the weighted balls stay disjoint and no vertex can become hidden) that maximises the smallest dihedral angle of
+// its star, in the regular (weighted Delaunay) triangulation.
+//
+// The walk over critical weights. Raising v's weight from w0 only enlarges v's star: the star at weight w is the
+// cone from v over the boundary of the union of the cells of the triangulation without v whose orthosphere v^(w)
+// is closer than orthogonal to, i.e. whose critical weight |v - z|^2 - R^2 (z, R^2: orthocentre and squared
+// orthoradius of the cell) is below w. Cells not incident to v are cells of that triangulation, so, starting from
+// v's current star, the next cell to join is the cell beyond a link facet with the smallest critical weight. We
+// walk these events up to the cap, score each intermediate star (as a cone over the link, nothing is modified),
+// and keep the best. The chosen weight (the middle of its interval, away from degeneracies) is then re-checked
+// with CGAL's exact conflict zone and applied with Regular_triangulation_3::insert_in_hole, which replaces v's
+// vertex; the triangulation is regular by construction.
+//
+// What a move must keep (checked on the exact conflict zone before anything changes, so nothing is ever undone):
+//   - no vertex hidden (every vertex of the zone but v stays on its boundary), so pumping adds and removes none;
+//   - conformity: every subsegment and subfacet that was an edge or face of the zone is an edge or face of the new
+//     star (Theorem 7.2 promises it under the paper's conditions; we check rather than trust);
+//   - regions: a new cell takes the region of the zone cell it was carved from (the cell on v's side of its link
+//     facet); a volume vertex's zone must lie in one region;
+//   - quality: the new star's smallest in-domain dihedral angle is strictly larger than the old one, so the mesh's
+//     minimum dihedral angle never decreases.
+// Order: slivers worst first, each time the best of its four vertices; passes repeat while some move is accepted.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "qualmesh/quality.h"
+#include "refine/refine_state.h"
+
+namespace qualmesh::detail {
+
+namespace {
+
+const Kernel& kernel() {
+  static const Kernel k;
+  return k;
+}
+
+struct CellHash {
+  std::size_t operator()(const Ch3& c) const { return std::hash<const void*>()(&*c); }
+};
+
+using Key3 = std::array<Index, 3>;
+using Key2 = std::array<Index, 2>;
+
+struct KeyHash {
+  template <std::size_t N>
+  std::size_t operator()(const std::array<Index, N>& k) const {
+    std::size_t h = 0;
+    for (Index i : k) h = h * 1000003u ^ std::hash<Index>()(i);
+    return h;
+  }
+};
+
+Key3 sorted3(Index a, Index b, Index c) {
+  Key3 k{a, b, c};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// A facet of the zone's boundary: the zone cell on v's side and the index of the facet in it.
+struct LinkFacet {
+  Ch3 inner;
+  int index;
+};
+
+// Subsegments and subfacets among the edges and faces of one zone cell (vertex ids; kNoIndex-free).
+struct CellElements {
+  std::vector<Key2> subsegments;
+  std::vector<Key3> subfacets;
+};
+
+CellElements elements_of(const MeshState& s, Ch3 c) {
+  CellElements e;
+  Index ids[4];
+  for (int k = 0; k < 4; ++k) ids[k] = c->vertex(k)->info();
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) {
+      if (ids[a] == kNoIndex || ids[b] == kNoIndex) continue;
+      if (subsegment_of(s, ids[a], ids[b]) != kNoIndex)
+        e.subsegments.push_back({std::min(ids[a], ids[b]), std::max(ids[a], ids[b])});
+    }
+  for (int i = 0; i < 4; ++i) {
+    const Index a = ids[(i + 1) & 3], b = ids[(i + 2) & 3], cc = ids[(i + 3) & 3];
+    if (a == kNoIndex || b == kNoIndex || cc == kNoIndex) continue;
+    if (subfacet_of(s, a, b, cc) != kNoIndex) e.subfacets.push_back(sorted3(a, b, cc));
+  }
+  return e;
+}
+
+struct StarScore {
+  bool valid = false;
+  double min_dihedral_deg = std::numeric_limits<double>::infinity();  // over in-domain cells of the new star
+  double max_radius_edge = 0;                                           // over in-domain cells of the new star
+};
+
+// A new star may not raise the largest radius-edge ratio above what Rule 3 promised (rho0) or, where the old star
+// already exceeded it (acute input angles), above the old star's.
+bool keeps_radius_edge(const MeshState& s, const StarScore& candidate, const StarScore& current) {
+  return candidate.max_radius_edge <= std::max(s.options.radius_edge_bound, current.max_radius_edge);
+}
+
+// Scores the star v would have over `link` (the boundary of zone `cells`, with `elements` their subsegments and
+// subfacets): invalid when a vertex would be hidden, a sub-element would vanish, a new cell would not be
+// positively oriented, or (volume vertex) the zone spans more than one region.
+class StarEvaluator {
+ public:
+  StarEvaluator(const MeshState& s, Index v) : s_(s), v_(v), p_(s.kpoint(v)) {
+    volume_vertex_ = s.vertices[v].kind == VertexKind::Volume;
+  }
+
+  StarScore score(const std::vector<Ch3>& cells, const std::vector<LinkFacet>& link,
+                  const std::vector<const CellElements*>& elements) {
+    StarScore result;
+    link_faces_.clear();
+    link_edges_.clear();
+    link_vertices_.clear();
+    int region = kUnknownRegion;
+    for (const Ch3& c : cells) {
+      if (!volume_vertex_) break;
+      const int r = c->info().region;
+      if (region == kUnknownRegion) region = r;
+      if (r != region || r < 0) return result;
+    }
+    for (const LinkFacet& f : link) {
+      Index ids[3];
+      bool infinite = false;
+      for (int k = 0; k < 3; ++k) {
+        ids[k] = f.inner->vertex((f.index + 1 + k) & 3)->info();
+        infinite = infinite || ids[k] == kNoIndex;
+      }
+      for (int k = 0; k < 3; ++k) {
+        if (ids[k] != kNoIndex) link_vertices_.insert(ids[k]);
+        const Index a = ids[k], b = ids[(k + 1) % 3];
+        if (a != kNoIndex && b != kNoIndex) link_edges_.insert({std::min(a, b), std::max(a, b)});
+      }
+      if (infinite) continue;
+      link_faces_.insert(sorted3(ids[0], ids[1], ids[2]));
+      // The new cell: the inner cell with its vertex `index` replaced by v (same orientation).
+      std::array<KPoint3, 4> q;
+      for (int k = 0; k < 4; ++k) q[k] = k == f.index ? p_ : f.inner->vertex(k)->point().point();
+      if (kernel().orientation_3_object()(q[0], q[1], q[2], q[3]) != CGAL::POSITIVE) return result;
+      if (f.inner->info().region >= 0) {
+        const TetQuality tq = tet_quality(to_point3(q[0]), to_point3(q[1]), to_point3(q[2]), to_point3(q[3]));
+        result.min_dihedral_deg = std::min(result.min_dihedral_deg, tq.min_dihedral_deg);
+        result.max_radius_edge = std::max(result.max_radius_edge, tq.radius_edge);
+      }
+    }
+    // No vertex hidden.
+    for (const Ch3& c : cells)
+      for (int k = 0; k < 4; ++k) {
+        const Index id = c->vertex(k)->info();
+        if (id != kNoIndex && id != v_ && !link_vertices_.count(id)) return result;
+      }
+    // Conformity: every subsegment and subfacet of the zone stays.
+    for (const CellElements* e : elements) {
+      for (const Key2& seg : e->subsegments) {
+        if (seg[0] == v_ || seg[1] == v_) continue;  // v's edges to link vertices all exist
+        if (!link_edges_.count(seg)) return result;
+      }
+      for (const Key3& t : e->subfacets) {
+        if (t[0] == v_ || t[1] == v_ || t[2] == v_) {
+          Key2 rest{};
+          int n = 0;
+          for (Index id : t)
+            if (id != v_) rest[n++] = id;
+          if (!link_edges_.count(rest)) return result;
+        } else if (!link_faces_.count(t)) {
+          return result;
+        }
+      }
+    }
+    result.valid = true;
+    return result;
+  }
+
+ private:
+  const MeshState& s_;
+  Index v_;
+  KPoint3 p_;
+  bool volume_vertex_ = false;
+  std::unordered_set<Key3, KeyHash> link_faces_;
+  std::unordered_set<Key2, KeyHash> link_edges_;
+  std::unordered_set<Index> link_vertices_;
+};
+
+// Critical weight of cell c for v: the weight above which v^ is closer than orthogonal to c's orthosphere.
+double critical_weight(const MeshState& s, const KPoint3& p, Ch3 c) {
+  if (s.tr.is_infinite(c)) return std::numeric_limits<double>::infinity();
+  const auto& w0 = c->vertex(0)->point();
+  const auto& w1 = c->vertex(1)->point();
+  const auto& w2 = c->vertex(2)->point();
+  const auto& w3 = c->vertex(3)->point();
+  const KPoint3 z = kernel().construct_weighted_circumcenter_3_object()(w0, w1, w2, w3);
+  const double sq_r = kernel().compute_squared_radius_smallest_orthogonal_sphere_3_object()(w0, w1, w2, w3);
+  return CGAL::squared_distance(p, z) - sq_r;
+}
+
+struct PumpChoice {
+  double weight = 0;
+  StarScore current;
+  double current_score = 0;
+  double best_score = 0;
+  bool improves = false;
+};
+
+struct PumpContext {
+  std::vector<double> sq_nearest;  // N(v)^2 per vertex, measured before pumping
+};
+
+// Walks the critical weights of v from its current weight up to its cap (see the file comment).
+PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
+  PumpChoice choice;
+  const Vh3 vh = s.vertices[v].handle;
+  const double w0 = vh->point().weight();
+  const double f = local_feature_size_at(s, v);
+  double cap = s.options.delta * s.options.delta * ctx.sq_nearest[v];
+  if (std::isfinite(f)) cap = std::min(cap, s.options.omega * s.options.omega * f * f);
+  if (!(cap > w0)) return choice;
+  const KPoint3 p = s.kpoint(v);
+  StarEvaluator evaluator(s, v);
+
+  std::vector<Ch3> cells;
+  s.tr.incident_cells(vh, std::back_inserter(cells));
+  std::unordered_set<Ch3, CellHash> in_zone(cells.begin(), cells.end());
+  std::unordered_map<Key3, LinkFacet, KeyHash> link;  // keyed by sorted ids (kNoIndex sorts last)
+  auto key_of = [](Ch3 c, int i) {
+    return sorted3(c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(), c->vertex((i + 3) & 3)->info());
+  };
+  for (const Ch3& c : cells) {
+    const int i = c->index(vh);
+    link.emplace(key_of(c, i), LinkFacet{c, i});
+  }
+  std::vector<CellElements> element_store;
+  element_store.reserve(cells.size() + 256);
+  for (const Ch3& c : cells) element_store.push_back(elements_of(s, c));
+
+  auto link_vector = [&]() {
+    std::vector<LinkFacet> out;
+    out.reserve(link.size());
+    for (const auto& kv : link) out.push_back(kv.second);
+    return out;
+  };
+  auto element_ptrs = [&]() {
+    std::vector<const CellElements*> out;
+    for (const auto& e : element_store) out.push_back(&e);
+    return out;
+  };
+  const StarScore current = evaluator.score(cells, link_vector(), element_ptrs());
+  if (!current.valid) return choice;
+  choice.current = current;
+  choice.current_score = current.min_dihedral_deg;
+  choice.best_score = current.min_dihedral_deg;
+  if (!std::isfinite(current.min_dihedral_deg)) return choice;  // no in-domain cell
+
+  std::unordered_map<Ch3, double, CellHash> crit_cache;
+  auto next_event = [&](Ch3* cell, Key3* through) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& kv : link) {
+      const Ch3 n = kv.second.inner->neighbor(kv.second.index);
+      auto it = crit_cache.find(n);
+      const double w = it != crit_cache.end() ? it->second : (crit_cache[n] = critical_weight(s, p, n));
+      if (w < best) best = w, *cell = n, *through = kv.first;
+    }
+    return best;
+  };
+  constexpr int kMaxEvents = 256;
+  Ch3 n;
+  Key3 through{};
+  double w = next_event(&n, &through);
+  for (int event = 0; event < kMaxEvents && w < cap; ++event) {
+    if (w < w0) w = w0;  // rounding: a cell already due
+    // Absorb n: toggle its four faces in the link.
+    in_zone.insert(n);
+    cells.push_back(n);
+    element_store.push_back(elements_of(s, n));
+    for (int i = 0; i < 4; ++i) {
+      const Key3 k = key_of(n, i);
+      auto it = link.find(k);
+      if (it != link.end()) link.erase(it);
+      else link.emplace(k, LinkFacet{n, i});
+    }
+    Ch3 n2;
+    Key3 through2{};
+    const double w_next = next_event(&n2, &through2);
+    const double hi = std::min(w_next, cap);
+    if (hi > w) {
+      const StarScore sc = evaluator.score(cells, link_vector(), element_ptrs());
+      if (!sc.valid) break;  // the zone only grows: a hidden vertex or a lost element stays so
+      if (sc.min_dihedral_deg > choice.best_score && keeps_radius_edge(s, sc, current)) {
+        choice.best_score = sc.min_dihedral_deg;
+        choice.weight = 0.5 * (w + hi);
+      }
+    }
+    n = n2;
+    through = through2;
+    w = w_next;
+  }
+  choice.improves = choice.best_score > choice.current_score + 1e-9 && choice.weight > w0;
+  return choice;
+}
+
+// Re-checks `weight` on CGAL's exact conflict zone and applies it; false (nothing changed) when a check fails or
+// the star is not better.
+bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current) {
+  const Vh3 vh = s.vertices[v].handle;
+  const KWeightedPoint3 wp(s.kpoint(v), weight);
+  std::vector<Ch3> cells;
+  std::vector<Facet3> boundary;
+  s.tr.find_conflicts(wp, vh->cell(), std::back_inserter(boundary), std::back_inserter(cells),
+                      CGAL::Emptyset_iterator());
+  if (cells.empty() || boundary.empty()) return false;
+  // Every cell of v's star must be in the zone (the new vertex replaces v).
+  std::vector<Ch3> star;
+  s.tr.incident_cells(vh, std::back_inserter(star));
+  std::unordered_set<Ch3, CellHash> zone(cells.begin(), cells.end());
+  for (const Ch3& c : star)
+    if (!zone.count(c)) return false;
+  std::vector<LinkFacet> link;
+  link.reserve(boundary.size());
+  for (const Facet3& f : boundary) link.push_back({f.first, f.second});
+  std::vector<CellElements> elements;
+  elements.reserve(cells.size());
+  for (const Ch3& c : cells) elements.push_back(elements_of(s, c));
+  std::vector<const CellElements*> ptrs;
+  for (const auto& e : elements) ptrs.push_back(&e);
+  StarEvaluator evaluator(s, v);
+  const StarScore sc = evaluator.score(cells, link, ptrs);
+  if (!sc.valid || !(sc.min_dihedral_deg > current.min_dihedral_deg) || !keeps_radius_edge(s, sc, current))
+    return false;
+
+  // Regions of the new cells: the zone cell each was carved from, found across its outer face after insertion.
+  struct Outer {
+    Ch3 neighbor;
+    int mirror;
+    int region;
+  };
+  std::vector<Outer> outer;
+  outer.reserve(boundary.size());
+  for (const Facet3& f : boundary) {
+    const Ch3 n = f.first->neighbor(f.second);
+    outer.push_back({n, n->index(f.first), f.first->info().region});
+  }
+  const std::size_t num_before = s.tr.number_of_vertices();
+  const Vh3 nv = s.tr.insert_in_hole(wp, cells.begin(), cells.end(), boundary.front().first,
+                                     boundary.front().second);
+  nv->info() = v;
+  s.vertices[v].handle = nv;
+  for (const Outer& o : outer) {
+    const Ch3 c = o.neighbor->neighbor(o.mirror);
+    c->info().region = s.tr.is_infinite(c) ? kOutsideRegion : o.region;
+    c->info().guess = kUnknownRegion;
+  }
+  if (s.tr.number_of_vertices() != num_before) {
+    // Unreachable: the zone check above keeps every vertex; a hidden vertex would break "no vertex removed".
+    throw std::logic_error("pumping hid a vertex");
+  }
+  return true;
+}
+
+}  // namespace
+
+void pump_slivers(MeshState& s) {
+  s.stats.num_vertices_before_pumping = s.tr.number_of_vertices();
+  PumpContext ctx;
+  ctx.sq_nearest.assign(s.vertices.size(), std::numeric_limits<double>::infinity());
+  for (auto e = s.tr.finite_edges_begin(); e != s.tr.finite_edges_end(); ++e) {
+    const Index a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
+    const double d = CGAL::squared_distance(s.kpoint(a), s.kpoint(b));
+    ctx.sq_nearest[a] = std::min(ctx.sq_nearest[a], d);
+    ctx.sq_nearest[b] = std::min(ctx.sq_nearest[b], d);
+  }
+  struct Bad {
+    double angle;
+    std::array<Index, 4> ids;
+  };
+  std::vector<Bad> bad;
+  auto collect = [&]() {
+    bad.clear();
+    std::size_t slivers = 0;
+    double min_angle = 180;
+    for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) {
+      if (c->info().region < 0) continue;
+      double angle = 180;
+      if (is_sliver(s, c, &angle)) ++slivers;
+      min_angle = std::min(min_angle, angle);
+      if (angle < s.options.sliver_angle_deg)
+        bad.push_back({angle, {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()}});
+    }
+    std::sort(bad.begin(), bad.end(), [](const Bad& a, const Bad& b) {
+      return a.angle < b.angle || (a.angle == b.angle && a.ids < b.ids);
+    });
+    return std::make_pair(slivers, min_angle);
+  };
+  const auto [slivers_before, min_before] = collect();
+  s.stats.num_slivers_before_pumping = slivers_before;
+  s.stats.min_dihedral_before_pumping_deg = min_before;
+
+  constexpr int kMaxPasses = 8;
+  for (int pass = 0; pass < kMaxPasses && !bad.empty(); ++pass) {
+    std::size_t moves = 0;
+    for (const Bad& b : bad) {
+      Ch3 c;
+      const auto& ids = b.ids;
+      if (!s.tr.is_cell(s.vertices[ids[0]].handle, s.vertices[ids[1]].handle, s.vertices[ids[2]].handle,
+                        s.vertices[ids[3]].handle, c))
+        continue;  // already gone
+      // The best of its four vertices.
+      Index best_v = kNoIndex;
+      PumpChoice best;
+      for (const Index v : ids) {
+        const PumpChoice choice = best_weight(s, ctx, v);
+        if (choice.improves && (best_v == kNoIndex || choice.best_score > best.best_score)) best = choice, best_v = v;
+      }
+      if (best_v == kNoIndex) continue;
+      if (apply_weight(s, best_v, best.weight, best.current)) {
+        ++moves;
+        ++s.stats.num_pump_moves;
+      } else {
+        ++s.stats.num_pump_rejected;
+      }
+    }
+    s.log_line("pumping pass " + std::to_string(pass + 1) + ": " + std::to_string(moves) + " weights changed");
+    if (moves == 0) break;
+    collect();
+  }
+
+  // Statistics.
+  s.stats.num_vertices_after_pumping = s.tr.number_of_vertices();
+  s.stats.num_slivers_after_pumping = collect().first;
+  for (Index v = 0; v < s.vertices.size(); ++v) {
+    if (s.vertices[v].handle == Vh3()) continue;
+    const double w = s.vertices[v].handle->point().weight();
+    if (w == 0) continue;
+    ++s.stats.num_vertices_pumped;
+    s.stats.max_weight = std::max(s.stats.max_weight, w);
+    const double f = local_feature_size_at(s, v);
+    double cap = s.options.delta * s.options.delta * ctx.sq_nearest[v];
+    if (std::isfinite(f)) cap = std::min(cap, s.options.omega * s.options.omega * f * f);
+    s.stats.max_weight_cap_ratio = std::max(s.stats.max_weight_cap_ratio, w / cap);
+  }
+}
+
+}  // namespace qualmesh::detail

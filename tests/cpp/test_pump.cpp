@@ -1,0 +1,259 @@
+// Tests of Rule 4 and pumping (issue 4; Cheng & Dey Section 3.7 step 3, Theorems 7.2 and 7.3), each run against
+// plain Delaunay refinement (MeshOptions::pump = false) on the same input. Properties asserted:
+//   - pumping adds and removes no vertex (triangulation counts before and after it; the same point set as the
+//     plain run when Rule 4 added nothing);
+//   - it never lowers the minimum dihedral angle (against the mesh it started from, and against the plain run when
+//     Rule 4 added nothing);
+//   - the output is weighted Delaunay: across every interior face the opposite vertex is no closer than orthogonal
+//     to the orthosphere of the tetrahedron on the other side (exact CGAL power test);
+//   - it conforms: volume and every facet's area agree with the input to 1e-9, no boundary face off the input;
+//   - every weight lies within its caps omega0^2 f(v)^2 (f exact, LocalFeatureSize) and delta^2 N(v)^2;
+//   - the vertex count is within 1.05x of plain refinement.
+#include <gtest/gtest.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "facet_triangulation.h"
+#include "local_feature_size.h"
+#include "qualmesh/mesh_check.h"
+#include "qualmesh/mesher.h"
+#include "qualmesh/plc_io.h"
+#include "qualmesh/quality.h"
+#include "test_support.h"
+
+namespace {
+
+using qualmesh::Index;
+using qualmesh::Plc;
+using qualmesh::Point3;
+using K = CGAL::Epick;
+
+struct PlcBuilder {
+  Plc plc;
+  std::map<Point3, Index> index;
+  std::set<std::vector<Index>> seen;
+  Index vertex(const Point3& p) {
+    auto it = index.find(p);
+    if (it != index.end()) return it->second;
+    plc.vertices.push_back(p);
+    return index[p] = Index(plc.vertices.size() - 1);
+  }
+  void quad(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+    std::vector<Index> loop{vertex(a), vertex(b), vertex(c), vertex(d)};
+    std::vector<Index> key = loop;
+    std::sort(key.begin(), key.end());
+    if (!seen.insert(key).second) return;
+    qualmesh::Facet f;
+    f.polygons.push_back(loop);
+    plc.facets.push_back(f);
+  }
+  void box(const Point3& lo, const Point3& hi) {
+    auto P = [&](int i, int j, int k) { return Point3{i ? hi[0] : lo[0], j ? hi[1] : lo[1], k ? hi[2] : lo[2]}; };
+    quad(P(0, 0, 0), P(1, 0, 0), P(1, 1, 0), P(0, 1, 0));
+    quad(P(0, 0, 1), P(1, 0, 1), P(1, 1, 1), P(0, 1, 1));
+    quad(P(0, 0, 0), P(1, 0, 0), P(1, 0, 1), P(0, 0, 1));
+    quad(P(0, 1, 0), P(1, 1, 0), P(1, 1, 1), P(0, 1, 1));
+    quad(P(0, 0, 0), P(0, 1, 0), P(0, 1, 1), P(0, 0, 1));
+    quad(P(1, 0, 0), P(1, 1, 0), P(1, 1, 1), P(1, 0, 1));
+  }
+};
+
+Plc l_shape() {
+  PlcBuilder b;
+  const std::vector<std::array<double, 2>> l{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  for (double z : {0.0, 1.0}) {
+    qualmesh::Facet f;
+    std::vector<Index> loop;
+    for (const auto& q : l) loop.push_back(b.vertex({q[0], q[1], z}));
+    f.polygons.push_back(loop);
+    b.plc.facets.push_back(f);
+  }
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    const auto& p = l[i];
+    const auto& q = l[(i + 1) % l.size()];
+    b.quad({p[0], p[1], 0}, {q[0], q[1], 0}, {q[0], q[1], 1}, {p[0], p[1], 1});
+  }
+  return b.plc;
+}
+
+// A triangulation of each facet (read_plc merges coplanar triangles into polygons that need not be convex) for the
+// local feature size.
+std::vector<std::vector<std::array<Index, 3>>> facet_triangles(const Plc& plc) {
+  std::vector<std::vector<std::array<Index, 3>>> out;
+  for (const auto& f : plc.facets) {
+    std::vector<std::array<Index, 3>> tris;
+    const auto frame = qualmesh::detail::compute_facet_frame(plc.vertices, f);
+    if (frame) {
+      const auto ft = qualmesh::detail::triangulate_facet(plc.vertices, f, *frame);
+      for (const auto& t : ft.triangles)
+        if (ft.is_plc_vertex(t[0]) && ft.is_plc_vertex(t[1]) && ft.is_plc_vertex(t[2])) tris.push_back(t);
+    }
+    out.push_back(tris);
+  }
+  return out;
+}
+
+double min_dihedral(const qualmesh::TetMesh& m) {
+  double angle = 180;
+  for (const auto& t : m.tets)
+    angle = std::min(angle, qualmesh::tet_min_dihedral_deg(m.points[t[0]], m.points[t[1]], m.points[t[2]],
+                                                           m.points[t[3]]));
+  return angle;
+}
+
+// Faces shared by two tetrahedra across which the weighted Delaunay (regular) property fails (exact predicate).
+std::size_t count_non_regular_faces(const qualmesh::TetMesh& m) {
+  auto wpoint = [&](Index i) {
+    const Point3& p = m.points[i];
+    return K::Weighted_point_3(K::Point_3(p[0], p[1], p[2]), m.weights.empty() ? 0.0 : m.weights[i]);
+  };
+  std::map<std::array<Index, 3>, std::pair<std::size_t, int>> first;  // face -> (tet, opposite corner)
+  std::size_t bad = 0;
+  const K kernel;
+  const auto side = kernel.power_side_of_oriented_power_sphere_3_object();
+  for (std::size_t t = 0; t < m.tets.size(); ++t) {
+    for (int i = 0; i < 4; ++i) {
+      std::array<Index, 3> f{m.tets[t][(i + 1) & 3], m.tets[t][(i + 2) & 3], m.tets[t][(i + 3) & 3]};
+      std::sort(f.begin(), f.end());
+      auto [it, inserted] = first.emplace(f, std::make_pair(t, i));
+      if (inserted) continue;
+      const auto& a = m.tets[it->second.first];
+      const auto& b = m.tets[t];
+      const Index a_opp = a[it->second.second], b_opp = b[i];
+      // Positively oriented tets: ON_POSITIVE_SIDE = closer than orthogonal to the orthosphere.
+      if (side(wpoint(a[0]), wpoint(a[1]), wpoint(a[2]), wpoint(a[3]), wpoint(b_opp)) == CGAL::ON_POSITIVE_SIDE ||
+          side(wpoint(b[0]), wpoint(b[1]), wpoint(b[2]), wpoint(b[3]), wpoint(a_opp)) == CGAL::ON_POSITIVE_SIDE)
+        ++bad;
+    }
+  }
+  return bad;
+}
+
+void expect_conforming(const Plc& plc, const qualmesh::TetMesh& mesh, const std::string& name) {
+  const qualmesh::CheckReport report = qualmesh::check_mesh(mesh, &plc);
+  EXPECT_EQ(report.num_nonpositive_tets, 0u) << name;
+  EXPECT_EQ(report.num_bad_indices + report.num_duplicate_tets + report.num_overshared_faces +
+                report.num_folded_faces, 0u) << name;
+  ASSERT_TRUE(report.has_reference);
+  EXPECT_LT(report.volume_relative_error, 1e-9) << name;
+  EXPECT_LT(report.max_facet_area_relative_error, 1e-9) << name;
+  EXPECT_EQ(report.num_faces_off_input, 0u) << name;
+}
+
+// Runs plain refinement and the default (Rule 4 and pumping) on `plc` and asserts the properties of the header.
+void expect_pumping_properties(const Plc& plc, const std::string& name, qualmesh::MeshOptions options = {}) {
+  options.pump = false;
+  const qualmesh::MeshResult plain = qualmesh::mesh_plc(plc, options);
+  options.pump = true;
+  const qualmesh::MeshResult pumped = qualmesh::mesh_plc(plc, options);
+  ASSERT_EQ(plain.status, qualmesh::MeshStatus::Ok);
+  ASSERT_EQ(pumped.status, qualmesh::MeshStatus::Ok);
+  const auto& st = pumped.stats;
+  const auto& m = pumped.mesh;
+
+  // No vertex added or removed by pumping.
+  EXPECT_EQ(st.num_vertices_before_pumping, st.num_vertices_after_pumping) << name;
+  EXPECT_EQ(m.points.size(), st.num_vertices_after_pumping) << name;
+  if (st.num_rule4_vertices == 0) {
+    auto sorted = [](std::vector<Point3> p) {
+      std::sort(p.begin(), p.end());
+      return p;
+    };
+    EXPECT_EQ(sorted(m.points), sorted(plain.mesh.points)) << name;
+    EXPECT_GE(min_dihedral(m), min_dihedral(plain.mesh)) << name;
+  }
+  // Never lowers the minimum dihedral angle of the mesh it pumps; slivers do not increase.
+  EXPECT_GE(st.min_dihedral_deg, st.min_dihedral_before_pumping_deg) << name;
+  EXPECT_LE(st.num_slivers_after_pumping, st.num_slivers_before_pumping) << name;
+  // Vertex count within 1.05x of plain refinement.
+  EXPECT_LE(double(m.points.size()), 1.05 * double(plain.mesh.points.size())) << name;
+
+  // Weighted Delaunay and conforming.
+  EXPECT_EQ(count_non_regular_faces(m), 0u) << name;
+  expect_conforming(plc, m, name);
+
+  // Weights within their caps.
+  if (!m.weights.empty()) {
+    ASSERT_EQ(m.weights.size(), m.points.size());
+    const qualmesh::LocalFeatureSize lfs(plc, facet_triangles(plc));
+    std::size_t nonzero = 0;
+    for (std::size_t v = 0; v < m.points.size(); ++v) {
+      const double w = m.weights[v];
+      ASSERT_GE(w, 0.0);
+      if (w == 0) continue;
+      ++nonzero;
+      const double f = lfs(m.points[v]);
+      EXPECT_LE(w, options.omega * options.omega * f * f * (1 + 1e-12)) << name << " vertex " << v;
+      double sq_n = std::numeric_limits<double>::infinity();
+      for (std::size_t u = 0; u < m.points.size(); ++u) {
+        if (u == v) continue;
+        const auto& a = m.points[u];
+        const auto& b = m.points[v];
+        sq_n = std::min(sq_n, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+      }
+      EXPECT_LE(w, options.delta * options.delta * sq_n * (1 + 1e-12)) << name << " vertex " << v;
+    }
+    EXPECT_EQ(nonzero, st.num_vertices_pumped) << name;
+  }
+}
+
+TEST(Pump, LShape) { expect_pumping_properties(l_shape(), "l_shape"); }
+
+TEST(Pump, StackedBoxesWithRegions) {
+  PlcBuilder b;
+  b.box({0, 0, 0}, {2, 1, 1});
+  b.box({0, 0, 1}, {2, 1, 1.6});
+  b.plc.regions.push_back({{1, 0.5, 0.5}, 1, 0});
+  b.plc.regions.push_back({{1, 0.5, 1.3}, 2, 0.002});
+  expect_pumping_properties(b.plc, "stacked");
+  // Regions stay right through pumping: every tet on its side of the internal facet z = 1.
+  const auto r = qualmesh::mesh_plc(b.plc);
+  const auto& m = r.mesh;
+  ASSERT_EQ(m.tet_region.size(), m.tets.size());
+  for (std::size_t i = 0; i < m.tets.size(); ++i) {
+    double z = 0;
+    for (Index v : m.tets[i]) z += m.points[v][2] / 4;
+    EXPECT_EQ(m.tet_region[i], z < 1 ? 1 : 2) << "tet " << i;
+  }
+}
+
+TEST(Pump, SizeFieldBoxPumpsSlivers) {
+  PlcBuilder b;
+  b.box({0, 0, 0}, {1, 1, 1});
+  qualmesh::MeshOptions options;
+  options.max_edge_length = 0.15;
+  expect_pumping_properties(b.plc, "box", options);
+  // A size field fills the box with thousands of tetrahedra; plain refinement leaves slivers that pumping removes.
+  options.pump = true;
+  const auto r = qualmesh::mesh_plc(b.plc, options);
+  EXPECT_GT(r.stats.num_slivers_before_pumping, 0u);
+  EXPECT_GT(r.stats.num_vertices_pumped, 0u);
+  EXPECT_LT(r.stats.num_slivers_after_pumping, r.stats.num_slivers_before_pumping);
+}
+
+TEST(Pump, NoPumpLeavesAllWeightsZero) {
+  qualmesh::MeshOptions options;
+  options.pump = false;
+  const auto r = qualmesh::mesh_plc(l_shape(), options);
+  EXPECT_TRUE(r.mesh.weights.empty());
+  EXPECT_EQ(r.stats.num_vertices_pumped, 0u);
+  EXPECT_EQ(r.stats.num_rule4_encroachments, 0u);
+}
+
+void expect_real(const std::string& file) {
+  const std::string path = qualmesh::test::shared_path("data/plc/" + file);
+  QM_REQUIRE_FILE(path);
+  const Plc plc = qualmesh::read_plc(path);
+  expect_pumping_properties(plc, file);
+}
+
+TEST(PumpReal, Fandisk) { expect_real("fandisk.off"); }
+TEST(PumpReal, Joint) { expect_real("joint.off"); }
+
+}  // namespace
