@@ -61,6 +61,9 @@ int run_mesh(MeshArgs& args) {
   std::printf("above bound: %zu tetrahedra: %zu at acute input angles, %zu given up (centre rejected), %zu other\n",
               st.num_tets_above_bound, st.num_above_bound_acute, st.num_above_bound_rejected,
               st.num_above_bound_other);
+  std::printf("away from acute input angles: min dihedral %.4g deg, %zu tetrahedra below %.4g deg\n",
+              st.min_dihedral_away_from_acute_deg, st.num_tets_below_sliver_angle_away_from_acute,
+              args.options.sliver_angle_deg);
   if (args.options.pump) {
     std::printf("rule 4:      %zu weighted-encroached elements split, %zu vertices added\n",
                 st.num_rule4_encroachments, st.num_rule4_vertices);

@@ -99,6 +99,10 @@ struct MeshStats {
   double max_weight_cap_ratio = 0;            // max over vertices of weight / min(omega0^2 f^2, delta^2 N^2)
   double max_weight = 0;                      // largest weight (model units squared)
   double min_dihedral_before_pumping_deg = 0; // over in-domain tetrahedra after refinement
+  // Output tetrahedra not touching an acute input angle (MeshResult::tet_touches_acute_angle): the smallest
+  // dihedral angle among them, and how many have one below MeshOptions::sliver_angle_deg.
+  double min_dihedral_away_from_acute_deg = 0;
+  std::size_t num_tets_below_sliver_angle_away_from_acute = 0;
   // Wall-clock seconds per stage.
   double seconds_initial = 0;
   double seconds_boundary = 0;

@@ -112,11 +112,17 @@ MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCa
   st.num_boundary_faces = result.mesh.faces.size();
   st.max_radius_edge = 0;
   st.min_dihedral_deg = result.mesh.tets.empty() ? 0 : 180;
-  for (const auto& tet : result.mesh.tets) {
+  st.min_dihedral_away_from_acute_deg = 180;
+  for (std::size_t i = 0; i < result.mesh.tets.size(); ++i) {
+    const auto& tet = result.mesh.tets[i];
     const auto& p = result.mesh.points;
     const TetQuality q = tet_quality(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]);
     st.max_radius_edge = std::max(st.max_radius_edge, q.radius_edge);
     st.min_dihedral_deg = std::min(st.min_dihedral_deg, q.min_dihedral_deg);
+    if (!result.tet_touches_acute_angle[i]) {
+      st.min_dihedral_away_from_acute_deg = std::min(st.min_dihedral_away_from_acute_deg, q.min_dihedral_deg);
+      if (q.min_dihedral_deg < options.sliver_angle_deg) ++st.num_tets_below_sliver_angle_away_from_acute;
+    }
   }
   st.seconds_extraction = seconds_since(t);
   if (s.progress) s.progress(ProgressEvent{MeshStage::Extraction, 1.0, s.tr.number_of_vertices()});

@@ -21,7 +21,8 @@
 //   - regions: a new cell takes the region of the zone cell it was carved from (the cell on v's side of its link
 //     facet); a volume vertex's zone must lie in one region;
 //   - quality: the new star's smallest in-domain dihedral angle is strictly larger than the old one, so the mesh's
-//     minimum dihedral angle never decreases.
+//     minimum dihedral angle never decreases; and no new cell exceeds rho0 unless it touches an acute input angle
+//     (then not beyond the old star's worst), so Rule 3's radius-edge bound survives pumping.
 // Order: slivers worst first, each time the best of its four vertices; passes repeat while some move is accepted.
 #include <algorithm>
 #include <cmath>
@@ -97,11 +98,11 @@ CellElements elements_of(const MeshState& s, Ch3 c) {
 struct StarScore {
   bool valid = false;
   double min_dihedral_deg = std::numeric_limits<double>::infinity();  // over in-domain cells of the new star
-  double max_radius_edge = 0;                                           // over in-domain cells of the new star
+  double max_radius_edge = 0;  // over in-domain cells of the new star above rho0 (all touch acute input angles)
 };
 
-// A new star may not raise the largest radius-edge ratio above what Rule 3 promised (rho0) or, where the old star
-// already exceeded it (acute input angles), above the old star's.
+// A new star may not raise the largest radius-edge ratio above what Rule 3 promised (rho0) or, for cells at acute
+// input angles (the only ones allowed above rho0, StarEvaluator), above the old star's.
 bool keeps_radius_edge(const MeshState& s, const StarScore& candidate, const StarScore& current) {
   return candidate.max_radius_edge <= std::max(s.options.radius_edge_bound, current.max_radius_edge);
 }
@@ -149,7 +150,13 @@ class StarEvaluator {
       if (f.inner->info().region >= 0) {
         const TetQuality tq = tet_quality(to_point3(q[0]), to_point3(q[1]), to_point3(q[2]), to_point3(q[3]));
         result.min_dihedral_deg = std::min(result.min_dihedral_deg, tq.min_dihedral_deg);
-        result.max_radius_edge = std::max(result.max_radius_edge, tq.radius_edge);
+        if (tq.radius_edge > s_.options.radius_edge_bound) {
+          // Rule 3's promise stands: above rho0 only where an acute input angle forces the shortest edge.
+          std::array<Index, 4> cell_ids;
+          for (int k = 0; k < 4; ++k) cell_ids[k] = k == f.index ? v_ : f.inner->vertex(k)->info();
+          if (!tet_touches_acute_angle(s_, cell_ids)) return result;
+          result.max_radius_edge = std::max(result.max_radius_edge, tq.radius_edge);
+        }
       }
     }
     // No vertex hidden.
