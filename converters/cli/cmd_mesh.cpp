@@ -1,4 +1,4 @@
-// `qualmesh mesh IN -o OUT [--radius-edge 2.0] [--max-edge L] [--max-volume V] [--sliver-angle 15] [--omega 0.2]
+// `qualmesh mesh IN -o OUT [--radius-edge 2.0] [--max-edge L] [--max-volume V] [--sliver-angle 15] [--omega 0.5]
 // [--delta 0.45] [--no-pump]`: weighted Delaunay refinement of the input PLC (Cheng & Dey, QUALMESH: Rules 1-4,
 // then pumping; --no-pump stops after Rules 1-3), written to OUT in the format its extension names. A progress bar
 // on stderr when stderr is a terminal (silent otherwise), then a short summary on stdout: counts, quality figures
@@ -99,7 +99,7 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
   command->add_option("--sliver-angle", args->options.sliver_angle_deg,
                       "A tetrahedron with a smaller dihedral angle (degrees) is a sliver (default 15)");
   command->add_option("--omega", args->options.omega,
-                      "omega0: Rule 4 tests, and pumping caps, weights at omega0^2 f(v)^2 (default 0.2)");
+                      "omega0: Rule 4 tests, and pumping caps, weights at omega0^2 f(v)^2 (default 0.5)");
   command->add_option("--delta", args->options.delta,
                       "Pumping caps weights at delta^2 N(v)^2, N: nearest-vertex distance; below 0.5 (default 0.45)");
   command->add_flag("--no-pump", args->no_pump,

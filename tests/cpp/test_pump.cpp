@@ -166,10 +166,11 @@ void expect_pumping_properties(const Plc& plc, const std::string& name, qualmesh
       return p;
     };
     EXPECT_EQ(sorted(m.points), sorted(plain.mesh.points)) << name;
-    EXPECT_GE(min_dihedral(m), min_dihedral(plain.mesh)) << name;
+    EXPECT_GE(min_dihedral(m), min_dihedral(plain.mesh) - 1e-9) << name;
   }
   // Never lowers the minimum dihedral angle of the mesh it pumps; slivers do not increase.
-  EXPECT_GE(st.min_dihedral_deg, st.min_dihedral_before_pumping_deg) << name;
+  // (1e-9 deg: the same tetrahedron measured from another vertex order rounds differently.)
+  EXPECT_GE(st.min_dihedral_deg, st.min_dihedral_before_pumping_deg - 1e-9) << name;
   EXPECT_LE(st.num_slivers_after_pumping, st.num_slivers_before_pumping) << name;
   // Vertex count within 1.05x of plain refinement.
   EXPECT_LE(double(m.points.size()), 1.05 * double(plain.mesh.points.size())) << name;

@@ -43,7 +43,7 @@ struct MeshOptions {
   double sliver_angle_deg = 15.0;
   // omega0 of Section 3.3: a vertex v is tested for weighted encroachment (Rule 4) with weight omega0^2 f(v)^2,
   // and pumped within [0, omega0^2 f(v)^2] (f: local feature size). Dimensionless, in (0, 1).
-  double omega = 0.2;
+  double omega = 0.5;
   // Pumping also keeps each weight at most delta^2 N(v)^2 (N(v): distance from v to its nearest vertex);
   // delta < 1/2 keeps the weighted balls disjoint, so no vertex is ever hidden. Dimensionless, in (0, 0.5).
   double delta = 0.45;

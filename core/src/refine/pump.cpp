@@ -97,9 +97,24 @@ CellElements elements_of(const MeshState& s, Ch3 c) {
 
 struct StarScore {
   bool valid = false;
+  // When invalid: true if every larger weight is invalid too (a vertex hidden, a subsegment or subfacet lost, a
+  // volume vertex's zone across regions: the zone only grows); false for a flat or inverted new cell (a degenerate
+  // event) or a cell above rho0, which a larger weight may undo.
+  bool final = true;
   double min_dihedral_deg = std::numeric_limits<double>::infinity();  // over in-domain cells of the new star
   double max_radius_edge = 0;  // over in-domain cells of the new star above rho0 (all touch acute input angles)
+  // Sum over in-domain cells of the new star of (sliver angle - min dihedral) where positive, in degrees: how far
+  // the star is from having no sliver. Breaks ties of min_dihedral_deg (a star whose worst cell is not v's to fix
+  // can still lose its other slivers).
+  double sliver_deficit_deg = 0;
 };
+
+// Is star `a` better than star `b`: a larger smallest dihedral angle, or the same one (never smaller: the mesh's
+// minimum dihedral angle must not drop) and less sliver deficit.
+bool better(const StarScore& a, const StarScore& b) {
+  if (a.min_dihedral_deg > b.min_dihedral_deg + 1e-9) return true;
+  return a.min_dihedral_deg >= b.min_dihedral_deg && a.sliver_deficit_deg < b.sliver_deficit_deg - 1e-9;
+}
 
 // A new star may not raise the largest radius-edge ratio above what Rule 3 promised (rho0) or, for cells at acute
 // input angles (the only ones allowed above rho0, StarEvaluator), above the old star's.
@@ -129,6 +144,7 @@ class StarEvaluator {
       if (region == kUnknownRegion) region = r;
       if (r != region || r < 0) return result;
     }
+    bool invalid_for_now = false;
     for (const LinkFacet& f : link) {
       Index ids[3];
       bool infinite = false;
@@ -146,15 +162,16 @@ class StarEvaluator {
       // The new cell: the inner cell with its vertex `index` replaced by v (same orientation).
       std::array<KPoint3, 4> q;
       for (int k = 0; k < 4; ++k) q[k] = k == f.index ? p_ : f.inner->vertex(k)->point().point();
-      if (kernel().orientation_3_object()(q[0], q[1], q[2], q[3]) != CGAL::POSITIVE) return result;
+      if (kernel().orientation_3_object()(q[0], q[1], q[2], q[3]) != CGAL::POSITIVE) invalid_for_now = true;
       if (f.inner->info().region >= 0) {
         const TetQuality tq = tet_quality(to_point3(q[0]), to_point3(q[1]), to_point3(q[2]), to_point3(q[3]));
         result.min_dihedral_deg = std::min(result.min_dihedral_deg, tq.min_dihedral_deg);
+        result.sliver_deficit_deg += std::max(0.0, s_.options.sliver_angle_deg - tq.min_dihedral_deg);
         if (tq.radius_edge > s_.options.radius_edge_bound) {
           // Rule 3's promise stands: above rho0 only where an acute input angle forces the shortest edge.
           std::array<Index, 4> cell_ids;
           for (int k = 0; k < 4; ++k) cell_ids[k] = k == f.index ? v_ : f.inner->vertex(k)->info();
-          if (!tet_touches_acute_angle(s_, cell_ids)) return result;
+          if (!tet_touches_acute_angle(s_, cell_ids)) invalid_for_now = true;
           result.max_radius_edge = std::max(result.max_radius_edge, tq.radius_edge);
         }
       }
@@ -182,6 +199,10 @@ class StarEvaluator {
           return result;
         }
       }
+    }
+    if (invalid_for_now) {
+      result.final = false;
+      return result;
     }
     result.valid = true;
     return result;
@@ -212,8 +233,7 @@ double critical_weight(const MeshState& s, const KPoint3& p, Ch3 c) {
 struct PumpChoice {
   double weight = 0;
   StarScore current;
-  double current_score = 0;
-  double best_score = 0;
+  StarScore best;
   bool improves = false;
 };
 
@@ -260,10 +280,9 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
     return out;
   };
   const StarScore current = evaluator.score(cells, link_vector(), element_ptrs());
-  if (!current.valid) return choice;
+  if (!current.valid && current.final) return choice;
   choice.current = current;
-  choice.current_score = current.min_dihedral_deg;
-  choice.best_score = current.min_dihedral_deg;
+  choice.best = current;
   if (!std::isfinite(current.min_dihedral_deg)) return choice;  // no in-domain cell
 
   std::unordered_map<Ch3, double, CellHash> crit_cache;
@@ -277,7 +296,7 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
     }
     return best;
   };
-  constexpr int kMaxEvents = 256;
+  constexpr int kMaxEvents = 96;  // stars change a few dozen times within the caps
   Ch3 n;
   Key3 through{};
   double w = next_event(&n, &through);
@@ -299,9 +318,9 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
     const double hi = std::min(w_next, cap);
     if (hi > w) {
       const StarScore sc = evaluator.score(cells, link_vector(), element_ptrs());
-      if (!sc.valid) break;  // the zone only grows: a hidden vertex or a lost element stays so
-      if (sc.min_dihedral_deg > choice.best_score && keeps_radius_edge(s, sc, current)) {
-        choice.best_score = sc.min_dihedral_deg;
+      if (!sc.valid && sc.final) break;  // the zone only grows: a hidden vertex or a lost element stays so
+      if (sc.valid && better(sc, choice.best) && keeps_radius_edge(s, sc, current)) {
+        choice.best = sc;
         choice.weight = 0.5 * (w + hi);
       }
     }
@@ -309,13 +328,13 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
     through = through2;
     w = w_next;
   }
-  choice.improves = choice.best_score > choice.current_score + 1e-9 && choice.weight > w0;
+  choice.improves = better(choice.best, current) && choice.weight > w0;
   return choice;
 }
 
 // Re-checks `weight` on CGAL's exact conflict zone and applies it; false (nothing changed) when a check fails or
 // the star is not better.
-bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current) {
+bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current, std::vector<Index>* touched) {
   const Vh3 vh = s.vertices[v].handle;
   const KWeightedPoint3 wp(s.kpoint(v), weight);
   std::vector<Ch3> cells;
@@ -339,7 +358,7 @@ bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current
   for (const auto& e : elements) ptrs.push_back(&e);
   StarEvaluator evaluator(s, v);
   const StarScore sc = evaluator.score(cells, link, ptrs);
-  if (!sc.valid || !(sc.min_dihedral_deg > current.min_dihedral_deg) || !keeps_radius_edge(s, sc, current))
+  if (!sc.valid || !better(sc, current) || !keeps_radius_edge(s, sc, current))
     return false;
 
   // Regions of the new cells: the zone cell each was carved from, found across its outer face after insertion.
@@ -354,6 +373,10 @@ bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current
     const Ch3 n = f.first->neighbor(f.second);
     outer.push_back({n, n->index(f.first), f.first->info().region});
   }
+  // Stars that change: v's and those of the zone's vertices.
+  for (const Ch3& c : cells)
+    for (int k = 0; k < 4; ++k)
+      if (c->vertex(k)->info() != kNoIndex) touched->push_back(c->vertex(k)->info());
   const std::size_t num_before = s.tr.number_of_vertices();
   const Vh3 nv = s.tr.insert_in_hole(wp, cells.begin(), cells.end(), boundary.front().first,
                                      boundary.front().second);
@@ -409,9 +432,14 @@ void pump_slivers(MeshState& s) {
   s.stats.num_slivers_before_pumping = slivers_before;
   s.stats.min_dihedral_before_pumping_deg = min_before;
 
+  // Passes: the first tries every vertex of every bad tetrahedron; a later one only vertices whose star changed
+  // since they were last tried (an unchanged star gives the same answer).
   constexpr int kMaxPasses = 8;
+  std::vector<std::uint8_t> dirty(s.vertices.size(), 1);
+  std::vector<Index> touched;
   for (int pass = 0; pass < kMaxPasses && !bad.empty(); ++pass) {
     std::size_t moves = 0;
+    touched.clear();
     for (const Bad& b : bad) {
       Ch3 c;
       const auto& ids = b.ids;
@@ -422,19 +450,25 @@ void pump_slivers(MeshState& s) {
       Index best_v = kNoIndex;
       PumpChoice best;
       for (const Index v : ids) {
+        if (!dirty[v]) continue;
         const PumpChoice choice = best_weight(s, ctx, v);
-        if (choice.improves && (best_v == kNoIndex || choice.best_score > best.best_score)) best = choice, best_v = v;
+        if (!choice.improves) dirty[v] = 0;
+        if (choice.improves && (best_v == kNoIndex || better(choice.best, best.best))) best = choice, best_v = v;
       }
       if (best_v == kNoIndex) continue;
-      if (apply_weight(s, best_v, best.weight, best.current)) {
+      if (apply_weight(s, best_v, best.weight, best.current, &touched)) {
         ++moves;
         ++s.stats.num_pump_moves;
+        for (const Index t : touched) dirty[t] = 1;
       } else {
         ++s.stats.num_pump_rejected;
+        dirty[best_v] = 0;
       }
     }
     s.log_line("pumping pass " + std::to_string(pass + 1) + ": " + std::to_string(moves) + " weights changed");
     if (moves == 0) break;
+    std::fill(dirty.begin(), dirty.end(), 0);
+    for (const Index t : touched) dirty[t] = 1;
     collect();
   }
 

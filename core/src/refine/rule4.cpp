@@ -61,7 +61,7 @@ double power(const KPoint3& p, double sq_weight, const KPoint3& center, double s
   return sq_dist(p, center) - sq_radius - sq_weight;
 }
 
-// Rule 4 for one vertex: queues what v^ encroaches; returns the number queued.
+// Rule 4 for one vertex: queues one element v^ encroaches (a subsegment first); returns the number queued (0 or 1).
 std::size_t rule4_vertex(MeshState& s, Index v) {
   const double f = local_feature_size_at(s, v);
   if (!std::isfinite(f) || !(f > 0)) return 0;
@@ -110,7 +110,6 @@ std::size_t rule4_vertex(MeshState& s, Index v) {
   std::sort(subfacets.begin(), subfacets.end());
   subfacets.erase(std::unique(subfacets.begin(), subfacets.end()), subfacets.end());
 
-  std::size_t queued = 0;
   // Rule 4, first bullet: a subsegment not on v's segment -> Rule 1.
   for (const auto& e : subsegments) {
     if (vertex_on_segment(s, v, e[0])) continue;
@@ -118,10 +117,9 @@ std::size_t rule4_vertex(MeshState& s, Index v) {
     const KPoint3 a = s.kpoint(e[1]), b = s.kpoint(e[2]);
     if (power(p, sq_weight, CGAL::midpoint(a, b), 0.25 * sq_dist(a, b)) < 0) {
       s.subsegment_queue.push_back({e[0], e[1], e[2], true});
-      ++queued;
+      return 1;  // "use rule 1 to split one"
     }
   }
-  if (queued > 0) return queued;  // Rule 1 before Rule 2
   // Second bullet: a subfacet not on v's facet -> Rule 2 on the one holding v's projection (Lemma 3.5).
   for (const auto& t : subfacets) {
     if (vertex_on_facet(s, v, t[0])) continue;
@@ -134,9 +132,9 @@ std::size_t rule4_vertex(MeshState& s, Index v) {
       if (power(p, sq_weight, CGAL::circumcenter(ha, hb, hc), CGAL::squared_radius(ha, hb, hc)) < 0) target = *h;
     }
     s.subfacet_queue.push_back({t[0], target, false, {}, true});
-    ++queued;
+    return 1;  // "use rule 2 to split one that contains the projection of v"
   }
-  return queued;
+  return 0;
 }
 
 // Vertices of the in-domain slivers among `cells` that touch no acute input angle, worst sliver first, each once.
@@ -182,36 +180,39 @@ bool is_sliver(const MeshState& s, Ch3 c, double* min_dihedral_deg) {
 
 void apply_rule4(MeshState& s) {
   const std::size_t start = s.vertices.size();
-  // Vertex budget of Rule 4 (beyond the paper, whose constants keep Rule 4 rare): about 2% more vertices. Each
-  // round queues at most a quarter of what is left, worst slivers first, since one split can cascade.
+  // Vertex budget of Rule 4 (beyond the paper, whose constants keep Rule 4 rare): about 2% more vertices, spent
+  // on the worst slivers first.
   const std::size_t budget = start / 50 + 8;
   std::vector<Ch3> cells;
   for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) cells.push_back(c);
   std::vector<Index> todo;
   sliver_vertices(s, cells, todo);
-  for (int round = 0; round < 16 && !todo.empty() && !s.vertex_limit_reached; ++round) {
+  bool budget_spent = false;
+  for (int round = 0; round < 16 && !todo.empty() && !s.vertex_limit_reached && !budget_spent; ++round) {
     std::size_t queued = 0;
-    const std::size_t used = s.vertices.size() - start;
-    const std::size_t max_queued = std::max<std::size_t>(1, (budget > used ? budget - used : 0) / 4);
+    const std::size_t before = s.vertices.size();
+    // One vertex at a time, drained at once (Rules 1-3), so that the budget is checked after each cascade.
     for (const Index v : todo) {
-      if (queued >= max_queued) break;
-      queued += rule4_vertex(s, v);
+      const std::size_t q = rule4_vertex(s, v);
+      if (q == 0) continue;
+      queued += q;
+      run_refinement(s, true);
+      if (!s.region_pending.empty()) {
+        std::vector<Ch3> assigned;
+        flood_pending_regions(s, assigned);
+      }
+      if (s.vertex_limit_reached || s.vertices.size() >= start + budget) {
+        budget_spent = true;
+        break;
+      }
     }
     if (queued == 0) break;
     s.stats.num_rule4_encroachments += queued;
-    const std::size_t before = s.vertices.size();
-    run_refinement(s, true);
-    if (!s.region_pending.empty()) {
-      std::vector<Ch3> assigned;
-      flood_pending_regions(s, assigned);
-    }
     s.stats.num_rule4_vertices += s.vertices.size() - before;
     s.log_line("rule 4 round " + std::to_string(round + 1) + ": " + std::to_string(queued) +
-               " encroached elements, " + std::to_string(s.vertices.size() - before) + " vertices");
-    if (s.vertices.size() >= start + budget) {
-      s.log_line("rule 4: vertex budget spent");
-      break;
-    }
+               " encroached elements, " + std::to_string(s.vertices.size() - before) + " vertices" +
+               (budget_spent ? " (vertex budget spent)" : ""));
+    if (budget_spent) break;
     // New slivers can only be cells created since: the stars of the new vertices.
     cells.clear();
     for (Index w = Index(before); w < s.vertices.size(); ++w) {
