@@ -131,20 +131,23 @@ class StarEvaluator {
     volume_vertex_ = s.vertices[v].kind == VertexKind::Volume;
   }
 
+  // `incremental`: the caller (the walk) checks hidden vertices and regions itself as cells join the zone.
   StarScore score(const std::vector<Ch3>& cells, const std::vector<LinkFacet>& link,
-                  const std::vector<const CellElements*>& elements) {
+                  const std::vector<const CellElements*>& elements, bool incremental = false) {
     StarScore result;
     link_faces_.clear();
     link_edges_.clear();
     link_vertices_.clear();
     int region = kUnknownRegion;
     for (const Ch3& c : cells) {
-      if (!volume_vertex_) break;
+      if (!volume_vertex_ || incremental) break;
       const int r = c->info().region;
       if (region == kUnknownRegion) region = r;
       if (r != region || r < 0) return result;
     }
     bool invalid_for_now = false;
+    bool has_elements = false;
+    for (const CellElements* e : elements) has_elements = has_elements || !e->subsegments.empty() || !e->subfacets.empty();
     for (const LinkFacet& f : link) {
       Index ids[3];
       bool infinite = false;
@@ -153,34 +156,36 @@ class StarEvaluator {
         infinite = infinite || ids[k] == kNoIndex;
       }
       for (int k = 0; k < 3; ++k) {
-        if (ids[k] != kNoIndex) link_vertices_.insert(ids[k]);
+        if (ids[k] != kNoIndex && !incremental) link_vertices_.push_back(ids[k]);
+        if (!has_elements) continue;
         const Index a = ids[k], b = ids[(k + 1) % 3];
         if (a != kNoIndex && b != kNoIndex) link_edges_.insert({std::min(a, b), std::max(a, b)});
       }
       if (infinite) continue;
-      link_faces_.insert(sorted3(ids[0], ids[1], ids[2]));
-      // The new cell: the inner cell with its vertex `index` replaced by v (same orientation).
-      std::array<KPoint3, 4> q;
-      for (int k = 0; k < 4; ++k) q[k] = k == f.index ? p_ : f.inner->vertex(k)->point().point();
-      if (kernel().orientation_3_object()(q[0], q[1], q[2], q[3]) != CGAL::POSITIVE) invalid_for_now = true;
-      if (f.inner->info().region >= 0) {
-        const TetQuality tq = tet_quality(to_point3(q[0]), to_point3(q[1]), to_point3(q[2]), to_point3(q[3]));
-        result.min_dihedral_deg = std::min(result.min_dihedral_deg, tq.min_dihedral_deg);
-        result.sliver_deficit_deg += std::max(0.0, s_.options.sliver_angle_deg - tq.min_dihedral_deg);
-        if (tq.radius_edge > s_.options.radius_edge_bound) {
-          // Rule 3's promise stands: above rho0 only where an acute input angle forces the shortest edge.
-          std::array<Index, 4> cell_ids;
-          for (int k = 0; k < 4; ++k) cell_ids[k] = k == f.index ? v_ : f.inner->vertex(k)->info();
-          if (!tet_touches_acute_angle(s_, cell_ids)) invalid_for_now = true;
-          result.max_radius_edge = std::max(result.max_radius_edge, tq.radius_edge);
-        }
+      const Key3 key = sorted3(ids[0], ids[1], ids[2]);
+      if (has_elements) link_faces_.insert(key);
+      // The new cell (v, f) does not depend on the weight: measured once per walk.
+      auto it = memo_.find(key);
+      if (it == memo_.end()) it = memo_.emplace(key, measure(f)).first;
+      const NewCell& cell = it->second;
+      if (!cell.positive) invalid_for_now = true;
+      if (!cell.in_domain) continue;
+      result.min_dihedral_deg = std::min(result.min_dihedral_deg, cell.min_dihedral_deg);
+      result.sliver_deficit_deg += std::max(0.0, s_.options.sliver_angle_deg - cell.min_dihedral_deg);
+      if (cell.radius_edge > s_.options.radius_edge_bound) {
+        // Rule 3's promise stands: above rho0 only where an acute input angle forces the shortest edge.
+        if (!cell.touches_acute) invalid_for_now = true;
+        result.max_radius_edge = std::max(result.max_radius_edge, cell.radius_edge);
       }
     }
     // No vertex hidden.
-    for (const Ch3& c : cells)
+    std::sort(link_vertices_.begin(), link_vertices_.end());
+    if (!incremental)
+      for (const Ch3& c : cells)
       for (int k = 0; k < 4; ++k) {
         const Index id = c->vertex(k)->info();
-        if (id != kNoIndex && id != v_ && !link_vertices_.count(id)) return result;
+        if (id != kNoIndex && id != v_ && !std::binary_search(link_vertices_.begin(), link_vertices_.end(), id))
+          return result;
       }
     // Conformity: every subsegment and subfacet of the zone stays.
     for (const CellElements* e : elements) {
@@ -209,13 +214,41 @@ class StarEvaluator {
   }
 
  private:
+  struct NewCell {
+    bool positive = false;
+    bool in_domain = false;
+    bool touches_acute = false;
+    double min_dihedral_deg = 0;
+    double radius_edge = 0;
+  };
+  // The cell of the new star over link facet f: f's inner cell with its vertex f.index replaced by v (same
+  // orientation), region from the inner cell.
+  NewCell measure(const LinkFacet& f) const {
+    NewCell cell;
+    std::array<KPoint3, 4> q;
+    for (int k = 0; k < 4; ++k) q[k] = k == f.index ? p_ : f.inner->vertex(k)->point().point();
+    cell.positive = kernel().orientation_3_object()(q[0], q[1], q[2], q[3]) == CGAL::POSITIVE;
+    cell.in_domain = f.inner->info().region >= 0;
+    if (!cell.in_domain) return cell;
+    const TetQuality tq = tet_quality(to_point3(q[0]), to_point3(q[1]), to_point3(q[2]), to_point3(q[3]));
+    cell.min_dihedral_deg = tq.min_dihedral_deg;
+    cell.radius_edge = tq.radius_edge;
+    if (tq.radius_edge > s_.options.radius_edge_bound) {
+      std::array<Index, 4> cell_ids;
+      for (int k = 0; k < 4; ++k) cell_ids[k] = k == f.index ? v_ : f.inner->vertex(k)->info();
+      cell.touches_acute = tet_touches_acute_angle(s_, cell_ids);
+    }
+    return cell;
+  }
+
   const MeshState& s_;
   Index v_;
   KPoint3 p_;
   bool volume_vertex_ = false;
+  std::unordered_map<Key3, NewCell, KeyHash> memo_;
   std::unordered_set<Key3, KeyHash> link_faces_;
   std::unordered_set<Key2, KeyHash> link_edges_;
-  std::unordered_set<Index> link_vertices_;
+  std::vector<Index> link_vertices_;
 };
 
 // Critical weight of cell c for v: the weight above which v^ is closer than orthogonal to c's orthosphere.
@@ -260,10 +293,15 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
   auto key_of = [](Ch3 c, int i) {
     return sorted3(c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(), c->vertex((i + 3) & 3)->info());
   };
+  std::unordered_map<Index, int> link_count;  // link facets per vertex: 0 = hidden
   for (const Ch3& c : cells) {
     const int i = c->index(vh);
-    link.emplace(key_of(c, i), LinkFacet{c, i});
+    const Key3 k = key_of(c, i);
+    link.emplace(k, LinkFacet{c, i});
+    for (Index id : k) ++link_count[id];
   }
+  const int star_region = cells.front()->info().region;
+  const bool volume_vertex = s.vertices[v].kind == VertexKind::Volume;
   std::vector<CellElements> element_store;
   element_store.reserve(cells.size() + 256);
   for (const Ch3& c : cells) element_store.push_back(elements_of(s, c));
@@ -303,21 +341,30 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
   for (int event = 0; event < kMaxEvents && w < cap; ++event) {
     if (w < w0) w = w0;  // rounding: a cell already due
     // Absorb n: toggle its four faces in the link.
+    if (volume_vertex && n->info().region != star_region) break;  // a volume vertex's star stays in its region
     in_zone.insert(n);
     cells.push_back(n);
     element_store.push_back(elements_of(s, n));
     for (int i = 0; i < 4; ++i) {
       const Key3 k = key_of(n, i);
       auto it = link.find(k);
+      const int delta = it != link.end() ? -1 : 1;
       if (it != link.end()) link.erase(it);
       else link.emplace(k, LinkFacet{n, i});
+      for (Index id : k) link_count[id] += delta;
     }
+    bool hidden = false;
+    for (int k = 0; k < 4; ++k) {
+      const Index id = n->vertex(k)->info();
+      hidden = hidden || (id != kNoIndex && id != v && link_count[id] <= 0);
+    }
+    if (hidden) break;  // the zone only grows: a hidden vertex stays hidden
     Ch3 n2;
     Key3 through2{};
     const double w_next = next_event(&n2, &through2);
     const double hi = std::min(w_next, cap);
     if (hi > w) {
-      const StarScore sc = evaluator.score(cells, link_vector(), element_ptrs());
+      const StarScore sc = evaluator.score(cells, link_vector(), element_ptrs(), true);
       if (!sc.valid && sc.final) break;  // the zone only grows: a hidden vertex or a lost element stays so
       if (sc.valid && better(sc, choice.best) && keeps_radius_edge(s, sc, current)) {
         choice.best = sc;
