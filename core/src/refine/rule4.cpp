@@ -115,7 +115,11 @@ std::size_t rule4_vertex(MeshState& s, Index v) {
     if (vertex_on_segment(s, v, e[0])) continue;
     if (meets_acute(s, v, {InputComplex::ElementKind::Segment, e[0]})) continue;
     const KPoint3 a = s.kpoint(e[1]), b = s.kpoint(e[2]);
-    if (power(p, sq_weight, CGAL::midpoint(a, b), 0.25 * sq_dist(a, b)) < 0) {
+    const KPoint3 m = CGAL::midpoint(a, b);
+    const double sq_r = 0.25 * sq_dist(a, b);
+    // Encroached only with the weight: an element v encroaches unweighted is one Rules 1-2 chose to leave (an
+    // acute input angle); Rule 4 does not overrule them.
+    if (power(p, 0, m, sq_r) >= 0 && power(p, sq_weight, m, sq_r) < 0) {
       s.subsegment_queue.push_back({e[0], e[1], e[2], true});
       return 1;  // "use rule 1 to split one"
     }
@@ -125,7 +129,9 @@ std::size_t rule4_vertex(MeshState& s, Index v) {
     if (vertex_on_facet(s, v, t[0])) continue;
     if (meets_acute(s, v, {InputComplex::ElementKind::Facet, t[0]})) continue;
     const KPoint3 a = s.kpoint(t[1]), b = s.kpoint(t[2]), c = s.kpoint(t[3]);
-    if (!(power(p, sq_weight, CGAL::circumcenter(a, b, c), CGAL::squared_radius(a, b, c)) < 0)) continue;
+    const KPoint3 z = CGAL::circumcenter(a, b, c);
+    const double sq_r = CGAL::squared_radius(a, b, c);
+    if (power(p, 0, z, sq_r) < 0 || !(power(p, sq_weight, z, sq_r) < 0)) continue;  // as for subsegments
     std::array<Index, 3> target{t[1], t[2], t[3]};
     if (auto h = subfacet_containing_projection(s, t[0], s.point(v), t[1])) {
       const KPoint3 ha = s.kpoint((*h)[0]), hb = s.kpoint((*h)[1]), hc = s.kpoint((*h)[2]);
