@@ -188,7 +188,8 @@ void apply_rule4(MeshState& s) {
   const std::size_t start = s.vertices.size();
   // Vertex budget of Rule 4 (beyond the paper, whose constants keep Rule 4 rare): about 2% more vertices, spent
   // on the worst slivers first.
-  const std::size_t budget = start / 50 + 8;
+  const std::size_t budget = start / 50;
+  if (budget == 0) return;
   std::vector<Ch3> cells;
   for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) cells.push_back(c);
   std::vector<Index> todo;
@@ -199,6 +200,10 @@ void apply_rule4(MeshState& s) {
     const std::size_t before = s.vertices.size();
     // One vertex at a time, drained at once (Rules 1-3), so that the budget is checked after each cascade.
     for (const Index v : todo) {
+      if (s.vertices.size() >= start + budget) {
+        budget_spent = true;
+        break;
+      }
       const std::size_t q = rule4_vertex(s, v);
       if (q == 0) continue;
       queued += q;
