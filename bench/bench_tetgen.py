@@ -49,6 +49,28 @@ def count_node_file(path):
     return 0
 
 
+def to_tetgen_poly(qualmesh, model, tmp):
+    """Converts `model` to TMP/STEM.poly with `qualmesh convert`, the one input every tool of a benchmark gets.
+
+    TetGen 1.5.0 aborts on some merged polygonal facets (collinear vertices on a polygon): then the unmerged
+    triangles are written instead, so that all tools still see the same PLC. Returns (poly path, display name,
+    error or None); the name gets " (triangles)" in that case.
+    """
+    poly = Path(tmp) / (model.stem + ".poly")
+    conv = subprocess.run([qualmesh, "convert", str(model), str(poly)], capture_output=True, text=True)
+    if conv.returncode != 0:
+        return poly, model.name, f"convert failed: {conv.stderr.strip()[:80]}"
+    probe = subprocess.run(["tetgen", "-pQ", poly.name], cwd=tmp, capture_output=True, text=True)
+    name = model.name
+    if probe.returncode != 0:
+        subprocess.run([qualmesh, "convert", "--keep-triangles", str(model), str(poly)],
+                       capture_output=True, text=True, check=True)
+        name += " (triangles)"
+    for stale in Path(tmp).glob(model.stem + ".1.*"):  # the probe's output
+        stale.unlink()
+    return poly, name, None
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--qualmesh", default=str(ROOT / "build" / "converters" / "qualmesh"))
@@ -67,19 +89,10 @@ def main():
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for model in models:
-            poly = Path(tmp) / (model.stem + ".poly")
-            conv = subprocess.run([args.qualmesh, "convert", str(model), str(poly)], capture_output=True, text=True)
-            if conv.returncode != 0:
-                rows.append((model.name, None, None, f"convert failed: {conv.stderr.strip()[:80]}"))
+            poly, name, error = to_tetgen_poly(args.qualmesh, model, tmp)
+            if error:
+                rows.append((model.name, None, None, error))
                 continue
-            # TetGen 1.5.0 aborts on some merged polygonal facets (collinear vertices on a polygon): then both tools
-            # get the unmerged triangles instead, so that they still see the same PLC.
-            probe = subprocess.run(["tetgen", "-pQ", poly.name], cwd=tmp, capture_output=True, text=True)
-            name = model.name
-            if probe.returncode != 0:
-                subprocess.run([args.qualmesh, "convert", "--keep-triangles", str(model), str(poly)],
-                               capture_output=True, text=True, check=True)
-                name += " (triangles)"
             best_q = best_t = float("inf")
             q_out = t_out = None
             for _ in range(args.repeat):

@@ -1,5 +1,6 @@
-// `qualmesh check MESH [--ref INPUT] [--json]`: re-checks a tetrahedral mesh from scratch (ours or a peer's:
-// TetGen, Gmsh, Medit): orientation, face matching, conformity to the input, quality figures. Exit 3 on defects.
+// `qualmesh check MESH [--ref INPUT] [--json] [--require-regular | --no-regularity]`: re-checks a tetrahedral mesh
+// from scratch (ours or a peer's: TetGen, Gmsh, Medit): orientation, face matching, conformity to the input, the
+// (weighted) Delaunay property (counted; a defect only with --require-regular), quality figures. Exit 3 on defects.
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -19,6 +20,8 @@ struct CheckArgs {
   InputOptions input_options;
   bool json = false;
   double tolerance = 1e-9;
+  bool require_regular = false;
+  bool no_regularity = false;
 };
 
 int run_check(const CheckArgs& args) {
@@ -27,6 +30,9 @@ int run_check(const CheckArgs& args) {
   if (!args.reference.empty()) reference = load_input(args.reference, args.input_options);
   CheckOptions options;
   options.tolerance = args.tolerance;
+  options.regularity = args.no_regularity     ? RegularityCheck::Skip
+                       : args.require_regular ? RegularityCheck::Require
+                                              : RegularityCheck::Report;
   const CheckReport report = check_mesh(mesh, reference ? &*reference : nullptr, options);
   std::cout << (args.json ? to_json(report) : to_text(report));
   std::cout.flush();
@@ -45,6 +51,10 @@ void register_check_command(CLI::App& app, int& exit_code) {
   command->add_flag("--json", args->json, "Print the report as JSON");
   command->add_option("--tolerance", args->tolerance,
                       "Distance tolerance for 'lies on a facet', relative to the bounding-box diagonal (1e-9)");
+  auto* require = command->add_flag(
+      "--require-regular", args->require_regular,
+      "Count every locally non-regular face (weighted Delaunay test, point array 'weight' of a .vtu) as a defect");
+  command->add_flag("--no-regularity", args->no_regularity, "Skip the weighted Delaunay test")->excludes(require);
   command->callback([args, &exit_code] { exit_code = run_check(*args); });
 }
 

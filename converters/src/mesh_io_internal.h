@@ -24,6 +24,9 @@ inline void put_double(std::ostream& out, double value) {
   out.write(buffer, result.ptr - buffer);
 }
 
+// The comment line that opens a TetGen .node file whose first vertex attribute is the weight (squared radius).
+inline constexpr const char* kWeightAttributeComment = "# QualMesh: vertex attribute 1 is the weight (squared radius)";
+
 // Region attribute of tetrahedron t (0 when the mesh has none).
 inline int tet_region_of(const TetMesh& mesh, std::size_t t) {
   return mesh.tet_region.empty() ? 0 : mesh.tet_region[t];

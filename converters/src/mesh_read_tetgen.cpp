@@ -1,7 +1,9 @@
-// TetGen mesh reader: BASE.node, BASE.ele and, when present, BASE.face (TetGen 1.5 file formats). The first index
-// of the .node file sets the numbering (0 or 1, as TetGen itself decides); .ele with 10 nodes per tetrahedron is
-// read as its 4 corners; the region is the first tetrahedron attribute (0 when none); the face marker is the
-// .face boundary marker. Node order is kept: TetGen 1.5.0 writes positively oriented tetrahedra.
+// TetGen mesh reader: BASE.node, BASE.ele and, when present, BASE.face (TetGen 1.5 file formats). The first index of
+// the .node file sets the numbering (0 or 1, as TetGen itself decides); .ele with 10 nodes per tetrahedron is read as
+// its 4 corners; the region is the first tetrahedron attribute (0 when none); the face marker is the .face boundary
+// marker. The first vertex attribute is read as the weight (TetMesh::weights) only when the .node file carries
+// QualMesh's comment kWeightAttributeComment (a foreign file's attributes mean anything). Node order is kept: TetGen
+// 1.5.0 writes positively oriented tetrahedra.
 #include <filesystem>
 
 #include "mesh_io_internal.h"
@@ -26,7 +28,9 @@ TetMesh read_tetgen(const std::string& base) {
   long long first_index = 0;
   {
     const std::string file = base + ".node";
-    Tokenizer tokens(read_whole_file(file), file, '#');
+    const std::string text = read_whole_file(file);
+    const bool weighted = text.find(kWeightAttributeComment) != std::string::npos;
+    Tokenizer tokens(text, file, '#');
     const std::size_t num_points = tokens.next_count("the number of vertices");
     const long long dimension = tokens.next_integer("the dimension");
     if (dimension != 3) tokens.fail(ErrorCode::Unsupported, "dimension " + std::to_string(dimension) + ", expected 3");
@@ -34,7 +38,9 @@ TetMesh read_tetgen(const std::string& base) {
     const long long num_markers = tokens.next_integer("the number of boundary markers");
     if (num_markers != 0 && num_markers != 1) tokens.fail(ErrorCode::Parse, "boundary marker count must be 0 or 1");
     if (num_points == 0) tokens.fail(ErrorCode::Empty, "no vertices (a .node file of a mesh lists its vertices)");
+    if (weighted && num_attributes == 0) tokens.fail(ErrorCode::Parse, "weights announced but no vertex attribute");
     mesh.points.resize(num_points);
+    if (weighted) mesh.weights.resize(num_points);
     for (std::size_t i = 0; i < num_points; ++i) {
       const long long index = tokens.next_integer("a vertex index");
       if (i == 0) {
@@ -44,7 +50,10 @@ TetMesh read_tetgen(const std::string& base) {
         tokens.fail(ErrorCode::Parse, "vertex numbers must be consecutive, got " + std::to_string(index));
       }
       for (int c = 0; c < 3; ++c) mesh.points[i][c] = tokens.next_double("a coordinate");
-      for (std::size_t a = 0; a < num_attributes; ++a) tokens.next_double("a vertex attribute");
+      for (std::size_t a = 0; a < num_attributes; ++a) {
+        const double attribute = tokens.next_double("a vertex attribute");
+        if (weighted && a == 0) mesh.weights[i] = attribute;
+      }
       if (num_markers) tokens.next_integer("a boundary marker");
     }
   }

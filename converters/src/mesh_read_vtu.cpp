@@ -1,8 +1,9 @@
 // VTU reader for the files QualMesh writes: VTK XML UnstructuredGrid, one Piece, ASCII DataArrays ("binary" and
-// "appended" data are not read). Keeps tetrahedra (VTK_TETRA = 10, node order as in the file) and the "region"
-// cell array (0 when absent); triangles (VTK_TRIANGLE = 5) become faces with marker 0; quadratic tetrahedra and
-// triangles (24, 22) are read as their corners; vertex and line cells are skipped; other cells are refused.
-// Not a general XML parser: it finds the <Points>, <Cells> and <CellData> blocks and their DataArrays.
+// "appended" data are not read). Keeps tetrahedra (VTK_TETRA = 10, node order as in the file) and the "region" cell
+// array (0 when absent) and the "weight" point array (TetMesh::weights; empty when absent); triangles (VTK_TRIANGLE =
+// 5) become faces with marker 0; quadratic tetrahedra and triangles (24, 22) are read as their corners; vertex and line
+// cells are skipped; other cells are refused. Not a general XML parser: it finds the <Points>, <Cells> and <CellData>
+// blocks and their DataArrays.
 #include <algorithm>
 #include <cstdlib>
 
@@ -41,18 +42,21 @@ class VtuReader {
     const DataArray* offsets = find(arrays, "Cells", "offsets");
     const DataArray* types = find(arrays, "Cells", "types");
     const DataArray* region = find(arrays, "CellData", "region");
+    const DataArray* weight = find(arrays, "PointData", "weight");
     if (!points || !connectivity || !offsets || !types) fail(ErrorCode::Parse, "missing Points or Cells arrays", line_at(piece));
     if (points->values.size() != 3 * num_points) fail(ErrorCode::Parse, "wrong number of coordinates", points->line);
     if (offsets->values.size() != num_cells || types->values.size() != num_cells) {
       fail(ErrorCode::Parse, "offsets/types do not match NumberOfCells", offsets->line);
     }
     if (region && region->values.size() != num_cells) fail(ErrorCode::Parse, "wrong size of 'region'", region->line);
+    if (weight && weight->values.size() != num_points) fail(ErrorCode::Parse, "wrong size of 'weight'", weight->line);
 
     TetMesh mesh;
     mesh.points.resize(num_points);
     for (std::size_t i = 0; i < num_points; ++i) {
       for (int c = 0; c < 3; ++c) mesh.points[i][c] = points->values[3 * i + c];
     }
+    if (weight) mesh.weights = weight->values;
     std::size_t begin = 0;
     for (std::size_t cell = 0; cell < num_cells; ++cell) {
       const std::size_t end = static_cast<std::size_t>(offsets->values[cell]);

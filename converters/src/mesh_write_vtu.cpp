@@ -1,7 +1,9 @@
-// VTU writer: VTK XML UnstructuredGrid, ASCII, linear tetrahedra (VTK_TETRA = 10, positive orientation as
-// QualMesh writes them). Cell data: "region" (Int32), and per-tetrahedron quality "min_dihedral_deg" and
-// "radius_edge" (Float64) so that ParaView can colour by quality directly. Boundary faces are not written (VTU
-// cells of mixed dimension confuse most viewers); the checker finds them again from the tetrahedra.
+// VTU writer: VTK XML UnstructuredGrid, ASCII, linear tetrahedra (VTK_TETRA = 10, positive orientation as QualMesh
+// writes them). Cell data: "region" (Int32), and per-tetrahedron quality "min_dihedral_deg" and "radius_edge" (Float64)
+// so that ParaView can colour by quality directly. Point data: "weight" (Float64, the paper's squared radius X^2,
+// TetMesh::weights) when the mesh has weights, so that `qualmesh check` can test the weighted Delaunay property of a
+// pumped mesh. Boundary faces are not written (VTU cells of mixed dimension confuse most viewers); the checker finds
+// them again from the tetrahedra.
 #include <ostream>
 
 #include "atomic_file.h"
@@ -41,8 +43,19 @@ void write_vtu(const TetMesh& mesh, const std::string& path) {
            "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
     for (std::size_t t = 0; t < num_tets; ++t) out << "          10\n";
     out << "        </DataArray>\n"
-           "      </Cells>\n"
-           "      <CellData Scalars=\"region\">\n"
+           "      </Cells>\n";
+    if (!mesh.weights.empty()) {
+      out << "      <PointData Scalars=\"weight\">\n"
+             "        <DataArray type=\"Float64\" Name=\"weight\" format=\"ascii\">\n";
+      for (double w : mesh.weights) {
+        out << "          ";
+        put_double(out, w);
+        out << '\n';
+      }
+      out << "        </DataArray>\n"
+             "      </PointData>\n";
+    }
+    out << "      <CellData Scalars=\"region\">\n"
            "        <DataArray type=\"Int32\" Name=\"region\" format=\"ascii\">\n";
     for (std::size_t t = 0; t < num_tets; ++t) out << "          " << tet_region_of(mesh, t) << '\n';
     std::vector<double> min_dihedral_deg(num_tets), radius_edge(num_tets);

@@ -3,7 +3,9 @@
 //  2. Faces: the four faces of every tetrahedron are sorted and grouped. A face of one tetrahedron is on the hull;
 //     of two, interior (the two opposite vertices must lie on opposite sides, else the tetrahedra overlap); of more,
 //     a defect. Faces of two tetrahedra of different regions are boundary faces too (internal facets).
-//  3. With a reference PLC: every boundary face must lie on an input facet (its three vertices within tolerance of
+//  3. Weighted Delaunay (regular) property, locally: across every face of two tetrahedra, the vertex of one opposite
+//     the face against the other's orthosphere, by the exact power test (mesh_check_regularity.cpp).
+//  4. With a reference PLC: every boundary face must lie on an input facet (its three vertices within tolerance of
 //     the facet's plane, its centroid inside the facet's region), the faces on each facet must cover its area,
 //     and the mesh volume must equal the volume the input encloses (mesh_check_reference.cpp).
 // Facet candidates for a face are found through a uniform grid over the facets' bounding boxes.
@@ -223,6 +225,9 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
   });
   std::vector<std::pair<std::array<Index, 3>, Index>> boundary;  // face, a tet that has it
   std::vector<std::pair<std::array<Index, 3>, Index>> interior;  // faces between two tets of the same region
+  std::vector<check::RegularityTest> regularity_tests;            // one per face of two valid tets
+  std::vector<std::pair<std::array<Index, 3>, Index>> regularity_faces;  // the face and the other tet, per test
+  const bool test_regularity = options.regularity != RegularityCheck::Skip;
   for (std::size_t i = 0; i < face_uses.size();) {
     std::size_t j = i;
     while (j < face_uses.size() && face_uses[j].key == face_uses[i].key) ++j;
@@ -242,6 +247,10 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
         problems.add(face_name(key) + ": tets " + std::to_string(face_uses[i].tet) + " and " +
                      std::to_string(face_uses[i + 1].tet) + " lie on the same side (overlap)");
       }
+      if (test_regularity) {
+        regularity_tests.push_back({mesh.tets[face_uses[i].tet], face_uses[i + 1].opposite});
+        regularity_faces.push_back({key, face_uses[i + 1].tet});
+      }
       if (region(face_uses[i].tet) != region(face_uses[i + 1].tet)) {
         ++report.num_region_interface_faces;
         boundary.push_back({key, face_uses[i].tet});
@@ -258,7 +267,38 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
   }
   report.num_boundary_faces = boundary.size();
 
-  // 3. Conformity to the reference.
+  // 3. Weighted Delaunay (regular) property, locally across the faces of two tetrahedra.
+  bool weights_ok = mesh.weights.empty() || mesh.weights.size() == num_points;
+  if (!weights_ok) {
+    problems.add("weights has " + std::to_string(mesh.weights.size()) + " entries for " +
+                 std::to_string(num_points) + " points");
+  } else {
+    for (std::size_t i = 0; i < mesh.weights.size(); ++i) {
+      const double w = mesh.weights[i];
+      if (!std::isfinite(w)) {
+        weights_ok = false;
+        problems.add("point " + std::to_string(i) + ": weight " + number(w) + " is not finite");
+        continue;
+      }
+      report.num_weighted_points += w != 0;
+      report.max_weight = std::max(report.max_weight, w);
+    }
+  }
+  if (test_regularity && weights_ok) {
+    report.weighted_delaunay_checked = true;
+    report.num_regularity_tested_faces = regularity_tests.size();
+    const std::vector<std::size_t> violations = check::find_non_regular(mesh.points, mesh.weights, regularity_tests);
+    report.num_non_regular_faces = violations.size();
+    if (options.regularity == RegularityCheck::Require) {
+      for (std::size_t k : violations) {
+        problems.add(face_name(regularity_faces[k].first) + ": vertex " + std::to_string(regularity_tests[k].vertex) +
+                     " of tet " + std::to_string(regularity_faces[k].second) +
+                     " is closer than orthogonal to the orthosphere of the tet across it (not weighted Delaunay)");
+      }
+    }
+  }
+
+  // 4. Conformity to the reference.
   if (reference) {
     report.has_reference = true;
     const Plc& plc = *reference;

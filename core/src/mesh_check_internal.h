@@ -1,5 +1,6 @@
 // Private to the mesh checker (mesh_check*.cpp): the geometry of one input facet as the checker needs it (plane,
-// 2D projection, loop nesting, area, point-in-facet test), and the reference-volume computation.
+// 2D projection, loop nesting, area, point-in-facet test), the reference-volume computation, and the local
+// regularity (weighted Delaunay) test, whose exact CGAL predicates stay in mesh_check_regularity.cpp.
 #pragma once
 
 #include <array>
@@ -51,5 +52,20 @@ struct ReferenceVolume {
 // Limits: facets must meet only along their polygon edges (no T-junctions, no facet ending inside another), and
 // facet hole points are assumed not to open a passage between two cells.
 ReferenceVolume compute_reference_volume(const Plc& plc, const std::vector<FacetGeometry>& facets);
+
+// One local regularity test: is `vertex` (the fourth vertex of the tetrahedron across one face of `tet`) no closer
+// than orthogonal to the orthosphere of `tet`?
+struct RegularityTest {
+  std::array<Index, 4> tet;  // vertex ids, any orientation
+  Index vertex;
+};
+
+// Runs the tests with the exact power test (CGAL Epick, power_side_of_oriented_power_sphere_3) on the points and
+// weights of `points` / `weights` (weights empty = all zero; else one per point). Returns the positions in `tests`
+// of the violations (vertex strictly closer than orthogonal), in order. A flat tetrahedron (orientation zero) is
+// never a violation: it has no orthosphere (the checker reports it as non-positive already).
+// Preconditions: every id < points.size().
+std::vector<std::size_t> find_non_regular(const std::vector<Point3>& points, const std::vector<double>& weights,
+                                          const std::vector<RegularityTest>& tests);
 
 }  // namespace qualmesh::check

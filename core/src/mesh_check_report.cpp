@@ -110,6 +110,11 @@ std::string to_json(const CheckReport& r) {
     }
     o.raw("facets", facets + (r.facets.empty() ? "]" : "\n  ]"));
   }
+  o.boolean("weighted_delaunay_checked", r.weighted_delaunay_checked);
+  o.count("num_weighted_points", r.num_weighted_points);
+  o.number("max_weight", r.max_weight);
+  o.count("num_regularity_tested_faces", r.num_regularity_tested_faces);
+  o.count("num_non_regular_faces", r.num_non_regular_faces);
   o.number("min_dihedral_deg", r.min_dihedral_deg);
   o.number("max_dihedral_deg", r.max_dihedral_deg);
   o.number("dihedral_histogram_bin_deg", r.dihedral_histogram_bin_deg);
@@ -152,6 +157,17 @@ std::string to_text(const CheckReport& r) {
         << short_number(r.facet_area) << ", covered " << short_number(r.covered_area) << "; "
         << r.num_miscovered_facets << " of " << r.facets.size()
         << " facets miscovered (max relative error " << short_number(r.max_facet_area_relative_error) << ")\n";
+  }
+  if (r.weighted_delaunay_checked) {
+    out << (r.num_weighted_points ? "weighted Delaunay (regular): " : "Delaunay (all weights zero): ")
+        << r.num_non_regular_faces << " of " << r.num_regularity_tested_faces
+        << " faces of two tets locally non-regular";
+    if (r.num_weighted_points) {
+      out << "; " << r.num_weighted_points << " weighted points, max weight " << short_number(r.max_weight);
+    }
+    out << "\n";
+  } else {
+    out << "weighted Delaunay: not checked\n";
   }
   out << "quality: dihedral " << short_number(r.min_dihedral_deg) << " .. " << short_number(r.max_dihedral_deg)
       << " deg, max radius-edge " << short_number(r.max_radius_edge) << ", min sigma " << short_number(r.min_sigma)

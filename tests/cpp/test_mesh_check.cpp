@@ -1,13 +1,27 @@
 // Tests of the mesh checker (mesh_check.h): a unit cube split into 6 (Kuhn) or 5 tetrahedra conforms to the cube
 // PLC; a flipped, a missing and a duplicated tetrahedron are each reported; the reference volume of nested and
-// disjoint shells and the area of a facet with a hole loop are exact.
+// disjoint shells and the area of a facet with a hole loop are exact. Weighted Delaunay (regularity) test: a 2-3 flip
+// configuration whose regular triangulation switches with the weights of its shared face, Delaunay and regular
+// triangulations of random points built by CGAL (no false alarm), one 2-3 flip in them (exactly 3 faces flagged),
+// and weights kept bit for bit through VTU and TetGen files and seen by `qualmesh check --require-regular`.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <map>
+#include <random>
+#include <type_traits>
 
+#include <sys/wait.h>
+
+#include <CGAL/Delaunay_triangulation_3.h>
+
+#include "cgal_types.h"
 #include "qualmesh/mesh_check.h"
+#include "qualmesh/mesh_io.h"
 #include "qualmesh/quality.h"
+#include "test_support.h"
 
 namespace qualmesh {
 namespace {
@@ -271,6 +285,245 @@ TEST(MeshCheck, JsonHasStableKeysAndExactNumbers) {
     EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
   }
   EXPECT_NE(to_text(r).find("OK"), std::string::npos);
+}
+
+// Five points for the 2-3 flip: triangle a, b, c (ids 0-2) in the plane z = 0 around the z axis, d (3) above and e
+// (4) below it on the axis. Two tetrahedra (abcd, abce) share the face abc; three (deab, debc, deca) share the edge
+// de. Lifting p to |p|^2 - w: with weight W on a, b and c and none on d, e, the hyperplane through the lifted a, b,
+// c, d passes at 1.91 - 2W above e, whose lift is 0.09: the two-tet side is regular iff W > 0.91. Unweighted, e lies
+// inside the circumsphere of abcd (the three-tet side is the Delaunay one).
+TetMesh flip_points(double weight_abc) {
+  TetMesh mesh;
+  const double s = std::sqrt(3.0) / 2;
+  mesh.points = {{1, 0, 0}, {-0.5, s, 0}, {-0.5, -s, 0}, {0, 0, 0.3}, {0, 0, -0.3}};
+  if (weight_abc != 0) mesh.weights = {weight_abc, weight_abc, weight_abc, 0, 0};
+  return mesh;
+}
+
+TetMesh two_tets(double weight_abc) {
+  TetMesh mesh = flip_points(weight_abc);
+  mesh.tets = {{0, 1, 2, 3}, {0, 1, 2, 4}};
+  orient(mesh);
+  return mesh;
+}
+
+TetMesh three_tets(double weight_abc) {
+  TetMesh mesh = flip_points(weight_abc);
+  mesh.tets = {{3, 4, 0, 1}, {3, 4, 1, 2}, {3, 4, 2, 0}};
+  orient(mesh);
+  return mesh;
+}
+
+TEST(MeshCheckRegularity, TwoThreeFlipFollowsTheWeights) {
+  // Unweighted: the two-tet side fails on its one interior face, the three-tet side is Delaunay.
+  CheckReport r = check_mesh(two_tets(0), nullptr);
+  EXPECT_TRUE(r.weighted_delaunay_checked);
+  EXPECT_EQ(r.num_regularity_tested_faces, 1u);
+  EXPECT_EQ(r.num_non_regular_faces, 1u) << to_text(r);
+  EXPECT_TRUE(r.ok) << "Report mode: counted, not a defect\n" << to_text(r);
+  r = check_mesh(three_tets(0), nullptr);
+  EXPECT_EQ(r.num_regularity_tested_faces, 3u);
+  EXPECT_EQ(r.num_non_regular_faces, 0u) << to_text(r);
+  // Weight 1 on a, b, c (> 0.91): now the two-tet side is the regular one and all three faces of the other fail.
+  r = check_mesh(two_tets(1.0), nullptr);
+  EXPECT_EQ(r.num_weighted_points, 3u);
+  EXPECT_EQ(r.max_weight, 1.0);
+  EXPECT_EQ(r.num_non_regular_faces, 0u) << to_text(r);
+  r = check_mesh(three_tets(1.0), nullptr);
+  EXPECT_EQ(r.num_non_regular_faces, 3u) << to_text(r);
+  // Just either side of the threshold (0.91 is not a double; 0.90 and 0.92 are safely apart from it).
+  EXPECT_EQ(check_mesh(two_tets(0.90), nullptr).num_non_regular_faces, 1u);
+  EXPECT_EQ(check_mesh(two_tets(0.92), nullptr).num_non_regular_faces, 0u);
+}
+
+TEST(MeshCheckRegularity, RequireMakesViolationsProblemsAndSkipSkips) {
+  CheckOptions options;
+  options.regularity = RegularityCheck::Require;
+  CheckReport r = check_mesh(two_tets(0), nullptr, options);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.num_problems, 1u);
+  ASSERT_EQ(r.problems.size(), 1u);
+  EXPECT_NE(r.problems[0].find("face (0, 1, 2)"), std::string::npos) << r.problems[0];
+  EXPECT_TRUE(check_mesh(two_tets(1.0), nullptr, options).ok);
+  options.regularity = RegularityCheck::Skip;
+  r = check_mesh(two_tets(0), nullptr, options);
+  EXPECT_FALSE(r.weighted_delaunay_checked);
+  EXPECT_EQ(r.num_non_regular_faces, 0u);
+  const std::string json = to_json(check_mesh(three_tets(1.0), nullptr));
+  for (const char* key : {"\"weighted_delaunay_checked\": true", "\"num_non_regular_faces\": 3",
+                          "\"num_weighted_points\": 3", "\"num_regularity_tested_faces\": 3"}) {
+    EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
+  }
+}
+
+TEST(MeshCheckRegularity, MalformedWeightsAreProblems) {
+  TetMesh mesh = two_tets(1.0);
+  mesh.weights.pop_back();
+  CheckReport r = check_mesh(mesh, nullptr);
+  EXPECT_FALSE(r.ok);
+  EXPECT_FALSE(r.weighted_delaunay_checked);
+  mesh = two_tets(1.0);
+  mesh.weights[1] = std::nan("");
+  r = check_mesh(mesh, nullptr);
+  EXPECT_FALSE(r.ok);
+  EXPECT_FALSE(r.weighted_delaunay_checked);
+}
+
+TEST(MeshCheckRegularity, CosphericalKuhnCubeIsDelaunay) {
+  // All eight vertices on one sphere: every test is "orthogonal", which is not a violation.
+  const CheckReport r = check_mesh(kuhn_cube(), nullptr);
+  EXPECT_TRUE(r.weighted_delaunay_checked);
+  EXPECT_EQ(r.num_regularity_tested_faces, 6u);
+  EXPECT_EQ(r.num_non_regular_faces, 0u);
+}
+
+// The finite cells of a CGAL (regular or Delaunay) triangulation as a TetMesh, with the weights when asked.
+template <class Triangulation>
+TetMesh mesh_of(const Triangulation& triangulation, bool with_weights) {
+  TetMesh mesh;
+  std::map<typename Triangulation::Vertex_handle, Index> ids;
+  for (auto v = triangulation.finite_vertices_begin(); v != triangulation.finite_vertices_end(); ++v) {
+    ids[v] = static_cast<Index>(mesh.points.size());
+    const auto& p = triangulation.point(v);
+    if constexpr (std::is_same_v<std::decay_t<decltype(p)>, detail::KWeightedPoint3>) {
+      mesh.points.push_back({p.x(), p.y(), p.z()});
+      if (with_weights) mesh.weights.push_back(p.weight());
+    } else {
+      mesh.points.push_back({p.x(), p.y(), p.z()});
+    }
+  }
+  for (auto c = triangulation.finite_cells_begin(); c != triangulation.finite_cells_end(); ++c) {
+    mesh.tets.push_back({ids[c->vertex(0)], ids[c->vertex(1)], ids[c->vertex(2)], ids[c->vertex(3)]});
+  }
+  return mesh;
+}
+
+std::vector<Point3> random_points(std::size_t n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<Point3> points(n);
+  for (Point3& p : points) p = {unit(random), unit(random), unit(random)};
+  return points;
+}
+
+// Applies one 2-3 flip to `mesh`: the first face abc of two tetrahedra abcd, abce whose edge de crosses the
+// triangle's interior becomes the three tetrahedra around de. Returns false when no face allows it.
+bool flip_two_three(TetMesh& mesh) {
+  std::map<std::array<Index, 3>, std::vector<std::size_t>> tets_of_face;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<Index, 3> key;
+      int k = 0;
+      for (int i = 0; i < 4; ++i) {
+        if (i != skip) key[k++] = mesh.tets[t][i];
+      }
+      std::sort(key.begin(), key.end());
+      tets_of_face[key].push_back(t);
+    }
+  }
+  const auto opposite = [&mesh](std::size_t t, const std::array<Index, 3>& face) {
+    for (Index v : mesh.tets[t]) {
+      if (std::find(face.begin(), face.end(), v) == face.end()) return v;
+    }
+    return kNoIndex;
+  };
+  const auto volume = [&mesh](Index p, Index q, Index r, Index s) {
+    return tet_signed_volume(mesh.points[p], mesh.points[q], mesh.points[r], mesh.points[s]);
+  };
+  for (const auto& [face, tets] : tets_of_face) {
+    if (tets.size() != 2) continue;
+    const Index d = opposite(tets[0], face), e = opposite(tets[1], face);
+    const double v0 = volume(d, e, face[0], face[1]), v1 = volume(d, e, face[1], face[2]),
+                 v2 = volume(d, e, face[2], face[0]);
+    const double smallest = std::min({std::fabs(v0), std::fabs(v1), std::fabs(v2)});
+    if (!((v0 > 0 && v1 > 0 && v2 > 0) || (v0 < 0 && v1 < 0 && v2 < 0)) || smallest < 1e-6) continue;
+    const std::size_t first = std::min(tets[0], tets[1]), second = std::max(tets[0], tets[1]);
+    mesh.tets.erase(mesh.tets.begin() + second);
+    mesh.tets.erase(mesh.tets.begin() + first);
+    mesh.tets.push_back({d, e, face[0], face[1]});
+    mesh.tets.push_back({d, e, face[1], face[2]});
+    mesh.tets.push_back({d, e, face[2], face[0]});
+    orient(mesh);
+    return true;
+  }
+  return false;
+}
+
+TEST(MeshCheckRegularity, DelaunayOfRandomPointsPassesAndOneFlipIsFlaggedThreeTimes) {
+  const std::vector<Point3> points = random_points(2000, 7);
+  CGAL::Delaunay_triangulation_3<detail::Kernel> delaunay;
+  for (const Point3& p : points) delaunay.insert(detail::to_kpoint(p));
+  TetMesh mesh = mesh_of(delaunay, false);
+  orient(mesh);
+  CheckReport r = check_mesh(mesh, nullptr);
+  ASSERT_TRUE(r.ok) << to_text(r);
+  EXPECT_GT(r.num_regularity_tested_faces, 10000u);
+  EXPECT_EQ(r.num_non_regular_faces, 0u);
+  // After one 2-3 flip: the three new faces around the flipped edge fail (each test involves the same five
+  // points); the six outer faces do not (the old neighbours' circumspheres were empty).
+  ASSERT_TRUE(flip_two_three(mesh));
+  r = check_mesh(mesh, nullptr);
+  EXPECT_EQ(r.num_nonpositive_tets + r.num_folded_faces + r.num_overshared_faces, 0u) << to_text(r);
+  EXPECT_EQ(r.num_non_regular_faces, 3u) << to_text(r);
+}
+
+TEST(MeshCheckRegularity, RegularTriangulationOfWeightedPointsPasses) {
+  const std::vector<Point3> points = random_points(1500, 11);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> weight(0, 0.003);  // about (0.05)^2: some points get hidden
+  detail::RegularTriangulation3 regular;
+  for (const Point3& p : points) regular.insert(detail::KWeightedPoint3(detail::to_kpoint(p), weight(random)));
+  TetMesh mesh = mesh_of(regular, true);
+  orient(mesh);
+  CheckReport r = check_mesh(mesh, nullptr);
+  ASSERT_TRUE(r.ok) << to_text(r);
+  EXPECT_GT(r.num_weighted_points, 1000u);
+  EXPECT_EQ(r.num_non_regular_faces, 0u);
+  // The same tetrahedra judged without their weights are not Delaunay; one flip adds exactly three violations.
+  TetMesh unweighted = mesh;
+  unweighted.weights.clear();
+  const std::size_t unweighted_violations = check_mesh(unweighted, nullptr).num_non_regular_faces;
+  EXPECT_GT(unweighted_violations, 0u);
+  ASSERT_TRUE(flip_two_three(mesh));
+  EXPECT_EQ(check_mesh(mesh, nullptr).num_non_regular_faces, 3u);
+}
+
+TEST(MeshCheckRegularity, WeightsRoundTripThroughVtuAndTetGen) {
+  const auto dir = test::temp_dir("mesh-check-weights");
+  TetMesh mesh = three_tets(1.0);
+  mesh.weights = {1.0, 0.1 + 0.2, 1.0 / 3.0, 0, 5e-300};  // exact decimal round trip of awkward doubles
+  const std::string path = (dir / "weighted.vtu").string();
+  write_tet_mesh(mesh, path);
+  const TetMesh back = read_tet_mesh(path);
+  ASSERT_EQ(back.weights.size(), mesh.weights.size());
+  for (std::size_t i = 0; i < mesh.weights.size(); ++i) EXPECT_EQ(back.weights[i], mesh.weights[i]) << i;
+  // TetGen: the weight is vertex attribute 1, read back only from a .node file that QualMesh announced it in.
+  const std::string node = (dir / "weighted.node").string();
+  write_tet_mesh(mesh, node);
+  const TetMesh back_tetgen = read_tet_mesh(node);
+  ASSERT_EQ(back_tetgen.weights.size(), mesh.weights.size());
+  for (std::size_t i = 0; i < mesh.weights.size(); ++i) EXPECT_EQ(back_tetgen.weights[i], mesh.weights[i]) << i;
+  // No weights written, none read.
+  TetMesh plain = three_tets(0);
+  write_tet_mesh(plain, (dir / "plain.vtu").string());
+  EXPECT_TRUE(read_tet_mesh((dir / "plain.vtu").string()).weights.empty());
+  write_tet_mesh(plain, (dir / "plain.node").string());
+  EXPECT_TRUE(read_tet_mesh((dir / "plain.node").string()).weights.empty());
+  // The pumped-looking mesh judged from the file: regular with its weights (two tets), not with the three.
+  write_tet_mesh(two_tets(1.0), (dir / "two.vtu").string());
+  write_tet_mesh(three_tets(1.0), (dir / "three.vtu").string());
+  EXPECT_EQ(check_mesh(read_tet_mesh((dir / "two.vtu").string()), nullptr).num_non_regular_faces, 0u);
+  EXPECT_EQ(check_mesh(read_tet_mesh((dir / "three.vtu").string()), nullptr).num_non_regular_faces, 3u);
+  // And through the CLI: --require-regular turns the violations into exit code 3.
+  if (!std::filesystem::exists(test::qualmesh_exe())) GTEST_SKIP() << "qualmesh CLI not built";
+  const auto run = [&](const std::string& file) {
+    const std::string command = "'" + test::qualmesh_exe() + "' check --require-regular '" + (dir / file).string() +
+                                "' > /dev/null";
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  EXPECT_EQ(run("two.vtu"), 0);
+  EXPECT_EQ(run("three.vtu"), 3);
 }
 
 }  // namespace

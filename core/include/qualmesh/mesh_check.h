@@ -1,9 +1,11 @@
-// An independent validator of tetrahedral meshes (DESIGN.md "How we know it works", STYLE.md principle 6): it
-// re-checks a mesh from scratch, ours or a peer's (TetGen, Gmsh, Medit), and never trusts what the mesher knows.
-// It checks orientation, face-to-face matching, and, given the input PLC, conformity: the volume the input encloses
-// equals the mesh volume, every boundary face lies on an input facet, and the faces on each facet cover exactly
-// that facet (the paper's Theorem 7.2). It also gathers the quality figures of the paper (rho = R / L, sigma =
-// V / L^3, Section 2) and the dihedral angles FEM users read. Pure: nothing is printed, the mesh is not modified.
+// An independent validator of tetrahedral meshes (DESIGN.md "How we know it works", STYLE.md principle 6): it re-checks
+// a mesh from scratch, ours or a peer's (TetGen, Gmsh, Medit), and never trusts what the mesher knows. It checks
+// orientation, face-to-face matching, and, given the input PLC, conformity: the volume the input encloses equals the
+// mesh volume, every boundary face lies on an input facet, and the faces on each facet cover exactly that facet (the
+// paper's Theorem 7.2). It tests the weighted Delaunay (regular) property locally, across every face shared by two
+// tetrahedra (TetMesh::weights; all zero: the plain Delaunay empty-sphere property). It also gathers the quality
+// figures of the paper (rho = R / L, sigma = V / L^3, Section 2) and the dihedral angles FEM users read. Pure: nothing
+// is printed, the mesh is not modified.
 #pragma once
 
 #include <cstddef>
@@ -15,6 +17,13 @@
 
 namespace qualmesh {
 
+// What check_mesh does with the weighted Delaunay (regular) property.
+enum class RegularityCheck {
+  Skip,     // not tested (weighted_delaunay_checked stays false)
+  Report,   // tested and counted; violations do not make the mesh fail
+  Require,  // tested; each violation is a problem
+};
+
 struct CheckOptions {
   // Distance tolerance for "a vertex lies on a facet's plane", relative to the bounding-box diagonal of the
   // reference PLC (of the mesh when there is none).
@@ -25,6 +34,9 @@ struct CheckOptions {
   double relative_area_tolerance = 1e-8;
   // At most this many problem lines are kept (the counts are always complete).
   std::size_t max_problems = 100;
+  // The weighted Delaunay (regularity) test: Skip, Report (count only: foreign meshes such as TetGen's constrained
+  // Delaunay ones need not be regular), or Require (every violation is also a problem, so `ok` becomes false).
+  RegularityCheck regularity = RegularityCheck::Report;
 };
 
 // How much of one input facet the mesh's boundary faces cover.
@@ -74,6 +86,19 @@ struct CheckReport {
   double max_facet_area_relative_error = 0;
   std::size_t num_miscovered_facets = 0;   // facets whose relative area error exceeds the tolerance
   std::vector<FacetCoverage> facets;       // one per input facet
+
+  // Weighted Delaunay (regular) property, tested locally: for every face shared by two tetrahedra, the vertex of
+  // one tetrahedron opposite the face must be no closer than orthogonal to the other's orthosphere (the sphere
+  // orthogonal to the four weighted vertices; with all weights zero, the circumsphere: the vertex must not lie
+  // strictly inside it). Exact power test (CGAL Epick). Cospherical (orthogonal) configurations are not violations.
+  // For a triangulation of a convex region local regularity implies global regularity (Edelsbrunner and Shah); for
+  // a domain mesh (non-convex, holes, regions) the test across its interior and region-interface faces is the
+  // standard local check: a vertex seen only across the boundary is not tested. Unused points are not tested.
+  bool weighted_delaunay_checked = false;  // the test ran (options.regularity != Skip, weights well-formed)
+  std::size_t num_weighted_points = 0;     // points with a nonzero weight
+  double max_weight = 0;                   // largest weight (squared radius, model units squared)
+  std::size_t num_regularity_tested_faces = 0;  // faces shared by two valid tetrahedra (a flat one never fails)
+  std::size_t num_non_regular_faces = 0;   // of those, the locally non-regular ones
 
   // Quality figures over all tetrahedra.
   double min_dihedral_deg = 0;

@@ -1,0 +1,256 @@
+#!/usr/bin/python3
+"""Side-by-side mesh quality benchmark (issue 4): QualMesh without and with sliver pumping, `tetgen -pq2` and CGAL
+Mesh_3 (python3-pygalmesh) on the same input, in the same run, every mesh judged by the one checker
+`qualmesh check MESH --ref INPUT --json`.
+
+Input: each model is converted once by `qualmesh convert` to a TetGen .poly (bench_tetgen.to_tetgen_poly), which
+QualMesh and TetGen mesh and against which every mesh is checked. CGAL Mesh_3 meshes a closed triangulated
+surface: that .poly written as OFF when every facet is a triangle and meshio reads it, else the hull triangles of
+QualMesh's own mesh of it (same geometry, only the surface triangulation differs; Mesh_3 resamples the surface
+anyway). Mesh_3's sharp edges are protected (pygalmesh uses Polyhedral_mesh_domain_with_features_3).
+
+CGAL sizing, so that its vertex count is comparable to QualMesh's (default run): one size s is used for every
+Mesh_3 bound (max_edge_size_at_feature_edges = max_radius_surface_delaunay_ball = max_cell_circumradius = s,
+max_facet_distance = s / 10), with min_facet_angle 25 deg, max_circumradius_edge_ratio 2 (QualMesh's and TetGen's
+-q2 bound), perturb and exude on (Mesh_3's own sliver removal), seed 0. s starts at the edge of a regular
+tetrahedron of QualMesh's mean tetrahedron volume, and is rescaled by (vertices / target)^(1/3) up to
+--cgal-tries times until CGAL's vertex count is within 20% of QualMesh's; the size and the ratio are printed.
+
+QualMesh without pumping: `qualmesh mesh --no-pump` when `qualmesh mesh --help` lists that flag; until then the
+build has no pumping and the plain `qualmesh mesh` row is all there is (the table says so).
+
+Columns: vertices and tets as the checker counts them, wall time of the mesher (best of --repeat; CGAL: the last
+sizing run, in a fresh python3), min dihedral angle, tets with min dihedral under 5/10/15 deg, relative volume
+error and worst relative facet-area error against the input, whether the checker passes (structure and
+conformity), and locally non-regular faces (weighted Delaunay test; TetGen's output is constrained Delaunay and
+Mesh_3's a regular triangulation of weights it does not write, so only QualMesh's is expected to be 0).
+Not a test: a benchmark of one run on a possibly shared machine; compare the rows of one run only.
+
+Usage: bench/bench_quality.py [--qualmesh build/converters/qualmesh] [--timeout 300] [--repeat 1] [MODEL ...]
+Default models: those of bench_tetgen.py (examples/l_bracket.poly and the closed models of ../shared/data/plc/);
+a model QualMesh cannot mesh within --timeout is listed as skipped.
+"""
+import argparse
+import json
+import math
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_tetgen  # noqa: E402  (the same inputs and the same .poly conversion as the TetGen benchmark)
+
+ROOT = bench_tetgen.ROOT
+PYTHON = "/usr/bin/python3"
+
+# Runs in a fresh interpreter so that a per-run timeout can stop it: argv = surface, output .mesh, size.
+CGAL_SCRIPT = r"""
+import sys, time, meshio, pygalmesh
+surface, out, s = sys.argv[1], sys.argv[2], float(sys.argv[3])
+start = time.perf_counter()
+mesh = pygalmesh.generate_volume_mesh_from_surface_mesh(
+    surface, min_facet_angle=25.0, max_radius_surface_delaunay_ball=s, max_facet_distance=s / 10,
+    max_edge_size_at_feature_edges=s, max_circumradius_edge_ratio=2.0, max_cell_circumradius=s,
+    perturb=True, exude=True, verbose=False, seed=0)
+seconds = time.perf_counter() - start
+cells = [c for c in mesh.cells if c.type in ("tetra", "triangle")]
+meshio.write(out, meshio.Mesh(mesh.points, cells), file_format="medit")
+print("seconds", seconds)
+"""
+
+
+def run(cmd, timeout, cwd=None):
+    """Runs cmd; returns (seconds, CompletedProcess); returncode 124 when it ran past `timeout`."""
+    start = time.perf_counter()
+    try:
+        proc = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc = subprocess.CompletedProcess(cmd, 124, "", f"timed out after {timeout} s")
+    return time.perf_counter() - start, proc
+
+
+def check(qualmesh, mesh, poly):
+    """The checker's JSON report of `mesh` against `poly` (exit 0 or 3), or an error string."""
+    proc = subprocess.run([qualmesh, "check", str(mesh), "--ref", str(poly), "--json"], capture_output=True,
+                          text=True)
+    if proc.returncode not in (0, 3):
+        return f"check failed ({proc.returncode}): {proc.stderr.strip()[-100:]}"
+    return json.loads(proc.stdout)
+
+
+def has_flag(qualmesh, flag):
+    proc = subprocess.run([qualmesh, "mesh", "--help"], capture_output=True, text=True)
+    return flag in proc.stdout
+
+
+def hull_triangles_off(vtu, off):
+    """Writes the hull triangles of a tetrahedral mesh (outward, as QualMesh orients its tets) as an OFF file."""
+    import meshio
+    import numpy as np
+    mesh = meshio.read(vtu)
+    tets = np.concatenate([c.data for c in mesh.cells if c.type == "tetra"])
+    # Outward faces of a positively oriented tet (a, b, c, d): acb, abd, adc, bcd.
+    faces = np.concatenate([tets[:, [0, 2, 1]], tets[:, [0, 1, 3]], tets[:, [0, 3, 2]], tets[:, [1, 2, 3]]])
+    keys = np.sort(faces, axis=1)
+    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    hull = faces[counts[inverse.ravel()] == 1]
+    used, remap = np.unique(hull, return_inverse=True)
+    meshio.write(off, meshio.Mesh(mesh.points[used], [("triangle", remap.reshape(-1, 3))]))
+
+
+def cgal_surface(qualmesh, poly, qualmesh_vtu, tmp):
+    """A closed triangulated surface of the model for Mesh_3, and how it was made."""
+    import meshio
+    off = Path(tmp) / (poly.stem + "_surface.off")
+    conv = subprocess.run([qualmesh, "convert", str(poly), str(off)], capture_output=True, text=True)
+    if conv.returncode == 0:
+        try:
+            mesh = meshio.read(off)
+            if all(c.type == "triangle" for c in mesh.cells):
+                return off, "input triangles"
+        except Exception:  # polygons meshio cannot read: fall through
+            pass
+    hull_triangles_off(qualmesh_vtu, off)
+    return off, "hull of QualMesh's mesh"
+
+
+def run_cgal(poly, surface, target_vertices, start_size, args, tmp):
+    """Meshes `surface` with Mesh_3, resizing until the vertex count is near `target_vertices`.
+
+    Returns (row fields, note) where row fields are (seconds, report) or an error string.
+    """
+    size = start_size
+    out = Path(tmp) / (poly.stem + "_cgal.mesh")
+    note = ""
+    result = "not run"
+    for attempt in range(args.cgal_tries):
+        _, proc = run([PYTHON, "-c", CGAL_SCRIPT, str(surface), str(out), repr(size)], args.timeout)
+        if proc.returncode != 0:
+            result = f"pygalmesh failed ({proc.returncode}): {(proc.stderr or proc.stdout).strip()[-100:]}"
+            break
+        seconds = float(proc.stdout.split()[-1])
+        report = check(args.qualmesh, out, poly)
+        if isinstance(report, str):
+            result = report
+            break
+        vertices = report["num_points"] - report["num_unused_points"]
+        ratio = vertices / target_vertices
+        result = (seconds, report)
+        note = f"s = {size:.4g} ({attempt + 1} run(s)), vertices / QualMesh's = {ratio:.2f}"
+        if 0.8 <= ratio <= 1.25:
+            break
+        size *= ratio ** (1 / 3)
+    return result, note
+
+
+def row(model, tool, seconds, report):
+    if isinstance(report, str):
+        return f"| {model} | {tool} | {report} |||||||||||"
+    vertices = report["num_points"] - report["num_unused_points"]
+    vol = report.get("volume_relative_error")
+    area = report.get("max_facet_area_relative_error")
+    fmt = lambda x: "n/a" if x is None else f"{x:.1e}"  # noqa: E731
+    return (f"| {model} | {tool} | {vertices} | {report['num_tets']} | {seconds:.2f} | "
+            f"{report['min_dihedral_deg']:.2f} | {report['num_tets_min_dihedral_below_5']} | "
+            f"{report['num_tets_min_dihedral_below_10']} | {report['num_tets_min_dihedral_below_15']} | "
+            f"{fmt(vol)} | {fmt(area)} | {'yes' if report['ok'] else 'no (' + str(report['num_problems']) + ')'} | "
+            f"{report.get('num_non_regular_faces', 'n/a')} |")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--qualmesh", default=str(ROOT / "build" / "converters" / "qualmesh"))
+    parser.add_argument("--timeout", type=int, default=300, help="seconds per mesher run before it counts as failed")
+    parser.add_argument("--repeat", type=int, default=1, help="runs per QualMesh/TetGen mesh (best time kept)")
+    parser.add_argument("--cgal-tries", type=int, default=3, help="Mesh_3 sizing runs at most, per model")
+    parser.add_argument("--no-cgal", action="store_true", help="leave CGAL Mesh_3 out")
+    parser.add_argument("models", nargs="*")
+    args = parser.parse_args()
+    args.qualmesh = str(Path(args.qualmesh).resolve())
+    if shutil.which("tetgen") is None:
+        sys.exit("tetgen is not installed (apt-get install tetgen)")
+    have_cgal = not args.no_cgal
+    if have_cgal:
+        probe = subprocess.run([PYTHON, "-c", "import pygalmesh, meshio"], capture_output=True)
+        if probe.returncode != 0:
+            print("note: python3-pygalmesh is not installed: CGAL Mesh_3 left out", file=sys.stderr)
+            have_cgal = False
+    models = [Path(m) for m in args.models] or [m for m in bench_tetgen.DEFAULT_MODELS if m.exists()]
+    no_pump = has_flag(args.qualmesh, "--no-pump")
+    notes = []
+    if not no_pump:
+        notes.append("this qualmesh has no --no-pump flag (no pumping yet): one QualMesh row per model")
+
+    lines = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for model in models:
+            poly, name, error = bench_tetgen.to_tetgen_poly(args.qualmesh, model, tmp)
+            if error:
+                lines.append(row(model.name, "-", 0, error))
+                continue
+            print(f"{name} ...", file=sys.stderr, flush=True)
+            variants = [("qualmesh --no-pump", ["--no-pump"])] if no_pump else []
+            variants.append(("qualmesh", []))
+            default_report = None
+            default_vtu = None
+            for tool, extra in variants:
+                vtu = Path(tmp) / (poly.stem + ("_qm_nopump.vtu" if extra else "_qm.vtu"))
+                best, proc = math.inf, None
+                for _ in range(args.repeat):
+                    dt, proc = run([args.qualmesh, "mesh", str(poly), "-o", str(vtu)] + extra, args.timeout, tmp)
+                    if proc.returncode != 0:
+                        break
+                    best = min(best, dt)
+                if proc.returncode != 0:
+                    lines.append(row(name, tool, 0, f"failed ({proc.returncode}): "
+                                                     f"{proc.stderr.strip()[-100:]}".replace("|", "/")))
+                    continue
+                report = check(args.qualmesh, vtu, poly)
+                lines.append(row(name, tool, best, report))
+                if not extra and not isinstance(report, str):
+                    default_report, default_vtu = report, vtu
+            if default_report is None:
+                lines.append(f"| {name} | (skipped: QualMesh did not mesh it within {args.timeout} s) |||||||||||")
+                continue
+
+            best, proc = math.inf, None
+            for _ in range(args.repeat):
+                for stale in Path(tmp).glob(poly.stem + ".1.*"):
+                    stale.unlink()
+                dt, proc = run(["tetgen", "-pq2", "-Q", poly.name], args.timeout, tmp)
+                if proc.returncode != 0:
+                    break
+                best = min(best, dt)
+            if proc.returncode != 0:
+                lines.append(row(name, "tetgen -pq2", 0, f"failed ({proc.returncode})"))
+            else:
+                lines.append(row(name, "tetgen -pq2", best, check(args.qualmesh, Path(tmp) / (poly.stem + ".1.ele"),
+                                                                   poly)))
+
+            if have_cgal:
+                surface, how = cgal_surface(args.qualmesh, poly, default_vtu, tmp)
+                target = default_report["num_points"] - default_report["num_unused_points"]
+                mean_volume = default_report["mesh_volume"] / max(1, default_report["num_tets"])
+                start_size = (6 * math.sqrt(2) * mean_volume) ** (1 / 3)
+                result, note = run_cgal(poly, surface, target, start_size, args, tmp)
+                if isinstance(result, str):
+                    lines.append(row(name, "CGAL Mesh_3", 0, result.replace("|", "/")))
+                else:
+                    lines.append(row(name, "CGAL Mesh_3", *result))
+                notes.append(f"{name}: CGAL surface = {how}; {note}")
+
+    print("| model | tool | vertices | tets | time s | min dihedral deg | <5 | <10 | <15 | volume error | "
+          "facet-area error | checker ok | non-regular faces |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for line in lines:
+        print(line)
+    print()
+    for note in notes:
+        print(f"- {note}")
+
+
+if __name__ == "__main__":
+    main()
