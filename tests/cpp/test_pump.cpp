@@ -145,6 +145,10 @@ void expect_conforming(const Plc& plc, const qualmesh::TetMesh& mesh, const std:
   EXPECT_LT(report.volume_relative_error, 1e-9) << name;
   EXPECT_LT(report.max_facet_area_relative_error, 1e-9) << name;
   EXPECT_EQ(report.num_faces_off_input, 0u) << name;
+  // The checker's own weighted Delaunay test agrees with count_non_regular_faces.
+  EXPECT_TRUE(report.weighted_delaunay_checked) << name;
+  EXPECT_EQ(report.num_non_regular_faces, 0u) << name;
+  EXPECT_EQ(report.num_weighted_points, mesh.weights.empty() ? 0u : std::size_t(std::count_if(mesh.weights.begin(), mesh.weights.end(), [](double w) { return w != 0; }))) << name;
 }
 
 // Runs plain refinement and the default (Rule 4 and pumping) on `plc` and asserts the properties of the header.
