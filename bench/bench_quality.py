@@ -151,7 +151,8 @@ def run_cgal(poly, surface, target_vertices, start_size, args, tmp):
 
 def row(model, tool, seconds, report):
     if isinstance(report, str):
-        return f"| {model} | {tool} | {report} |||||||||||"
+        text = " ".join(report.replace("|", "/").split())  # one table cell: no newline, no bar
+        return f"| {model} | {tool} | {text} |||||||||||"
     vertices = report["num_points"] - report["num_unused_points"]
     vol = report.get("volume_relative_error")
     area = report.get("max_facet_area_relative_error")
@@ -216,7 +217,8 @@ def main():
                 if not extra and not isinstance(report, str):
                     default_report, default_vtu = report, vtu
             if default_report is None:
-                lines.append(f"| {name} | (skipped: QualMesh did not mesh it within {args.timeout} s) |||||||||||")
+                lines.append(f"| {name} | (peers skipped: QualMesh's default run failed or ran past {args.timeout} s) "
+                             "|||||||||||")
                 continue
 
             best, proc = math.inf, None
