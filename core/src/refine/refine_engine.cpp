@@ -222,12 +222,13 @@ TetVerdict judge_tet(MeshState& s, Ch3 c) {
     max_volume = max_volume > 0 ? std::min(max_volume, s.regions[region].max_volume) : s.regions[region].max_volume;
   if (max_volume > 0 && CGAL::volume(p0, p1, p2, p3) > max_volume) return TetVerdict::TooLarge;
   // A flat tetrahedron lying on one plane of facets: four near-cocircular points of a facet whose circumsphere,
-  // ill-defined, may pass the radius-edge test; never excused by an acute angle. Rule 2 removes it (process_tet).
+  // ill-defined, may pass the radius-edge test. Rule 2 removes it (process_tet), except where its shortest edge is
+  // forced by an acute input angle (concentric shells make isosceles trapezoids, which are cocircular: splitting
+  // them there cascades).
   const double volume = std::fabs(CGAL::volume(p0, p1, p2, p3));
-  if (volume < 1e-6 * sq_max * std::sqrt(sq_max) && facet_under_flat_cell(s, c) != kNoIndex)
-    return TetVerdict::Skinny;
+  const bool flat = volume < 1e-6 * sq_max * std::sqrt(sq_max) && facet_under_flat_cell(s, c) != kNoIndex;
   const double sq_r = CGAL::squared_radius(p0, p1, p2, p3);
-  if (!(sq_r > s.sq_radius_edge_bound * sq_min)) return TetVerdict::Good;
+  if (!flat && !(sq_r > s.sq_radius_edge_bound * sq_min)) return TetVerdict::Good;
   // Shortest edge forced by an acute input angle (the one definition: tet_touches_acute_angle()).
   if (shortest_edge_forced_by_acute_angle(s, ids[emin_a], ids[emin_b])) return TetVerdict::ForcedBySmallAngle;
   return TetVerdict::Skinny;
