@@ -8,11 +8,19 @@
 //   carries its QualMesh vertex id, each cell its region (component) id.
 // - 2D: a Constrained_Delaunay_triangulation_2 per input facet, in an orthonormal frame of the facet's plane; the
 //   subfacets of paper Section 3.2 are its in-domain triangles.
+// - Determinism: every vertex, cell and face carries CGAL's time stamp (WithTimeStamp below), so that CGAL orders
+//   and hashes handles by creation order, not by address. Without it CGAL compares addresses: e.g.
+//   Triangulation_3::find_conflicts reports an internal facet from the cell of lower address (`c < test`), which
+//   set the order of Rule 3's subfacet queue; addresses depend on what the process allocated before, so meshing
+//   the same input twice in one process gave two meshes (house style, principle 7: same input, same mesh).
 // Private header: never include it from core/include.
 #pragma once
 
+#include <cstddef>
+
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Has_timestamp.h>
 #include <CGAL/Regular_triangulation_3.h>
 #include <CGAL/Regular_triangulation_cell_base_3.h>
 #include <CGAL/Regular_triangulation_vertex_base_3.h>
@@ -24,6 +32,26 @@
 #include "qualmesh/types.h"
 
 namespace qualmesh::detail {
+
+// Adds CGAL's time stamp (the Has_timestamp protocol of CGAL/Time_stamper.h, as Mesh_3's vertex and cell bases
+// do) to a vertex, cell or face base. The triangulation's Compact_container stamps each element from its own
+// counter when the element is created, so handle comparison (operator<) and std::hash follow the creation order
+// within that triangulation, which only the input and options decide.
+template <class Base>
+class WithTimeStamp : public Base {
+ public:
+  using Base::Base;
+  template <class Tds>
+  struct Rebind_TDS {
+    using Other = WithTimeStamp<typename Base::template Rebind_TDS<Tds>::Other>;
+  };
+  using Has_timestamp = CGAL::Tag_true;
+  std::size_t time_stamp() const { return time_stamp_; }
+  void set_time_stamp(const std::size_t& stamp) { time_stamp_ = stamp; }
+
+ private:
+  std::size_t time_stamp_ = std::size_t(-1);  // -1: not stamped yet (Time_stamper assigns the next one)
+};
 
 using Kernel = CGAL::Epick;
 using KPoint3 = Kernel::Point_3;
@@ -42,10 +70,11 @@ struct CellInfo {
   int guess = kUnknownRegion;
 };
 
-using Vb3 = CGAL::Triangulation_vertex_base_with_info_3<Index, Kernel, CGAL::Regular_triangulation_vertex_base_3<Kernel>>;
+using Vb3 = WithTimeStamp<
+    CGAL::Triangulation_vertex_base_with_info_3<Index, Kernel, CGAL::Regular_triangulation_vertex_base_3<Kernel>>>;
 using Cb3Base = CGAL::Regular_triangulation_cell_base_3<Kernel, CGAL::Triangulation_cell_base_3<Kernel>,
                                                         CGAL::Discard_hidden_points>;
-using Cb3 = CGAL::Triangulation_cell_base_with_info_3<CellInfo, Kernel, Cb3Base>;
+using Cb3 = WithTimeStamp<CGAL::Triangulation_cell_base_with_info_3<CellInfo, Kernel, Cb3Base>>;
 using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3, CGAL::Sequential_tag>;
 using RegularTriangulation3 = CGAL::Regular_triangulation_3<Kernel, Tds3>;
 using Vh3 = RegularTriangulation3::Vertex_handle;
@@ -60,8 +89,9 @@ struct FaceInfo2 {
   bool in_domain() const { return parity && !hole; }
 };
 
-using Vb2 = CGAL::Triangulation_vertex_base_with_info_2<Index, Kernel>;
-using Fb2 = CGAL::Constrained_triangulation_face_base_2<Kernel, CGAL::Triangulation_face_base_with_info_2<FaceInfo2, Kernel>>;
+using Vb2 = WithTimeStamp<CGAL::Triangulation_vertex_base_with_info_2<Index, Kernel>>;
+using Fb2 = WithTimeStamp<
+    CGAL::Constrained_triangulation_face_base_2<Kernel, CGAL::Triangulation_face_base_with_info_2<FaceInfo2, Kernel>>>;
 using Tds2 = CGAL::Triangulation_data_structure_2<Vb2, Fb2>;
 using Cdt2 = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds2, CGAL::No_constraint_intersection_requiring_constructions_tag>;
 using Vh2 = Cdt2::Vertex_handle;
