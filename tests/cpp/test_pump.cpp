@@ -243,10 +243,8 @@ TEST(Pump, SizeFieldBoxPumpsSlivers) {
   EXPECT_LT(r.stats.num_slivers_after_pumping, r.stats.num_slivers_before_pumping);
 }
 
-// Disabled: plain refinement itself (pump = false, the first check here) gives a different mesh for the same input
-// when other meshes were made earlier in the process (run after Pump.LShape it fails; alone it passes), so the
-// engine's determinism must be fixed first (issue 3); pumping adds no source of order of its own (sorted keys, no
-// pointer order).
+// The same input twice in a row, plain then pumped (run after the tests above, so other meshes came first; before
+// CGAL's handles were time-stamped it failed there and passed alone).
 TEST(Pump, Deterministic) {
   PlcBuilder b;
   b.box({0, 0, 0}, {1, 1, 1});
