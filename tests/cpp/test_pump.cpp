@@ -152,11 +152,15 @@ void expect_conforming(const Plc& plc, const qualmesh::TetMesh& mesh, const std:
 }
 
 // Runs plain refinement and the default (Rule 4 and pumping) on `plc` and asserts the properties of the header.
-void expect_pumping_properties(const Plc& plc, const std::string& name, qualmesh::MeshOptions options = {}) {
+// `plain_out`, `pumped_out`: where to leave the two results for further checks (optional).
+void expect_pumping_properties(const Plc& plc, const std::string& name, qualmesh::MeshOptions options = {},
+                               qualmesh::MeshResult* plain_out = nullptr, qualmesh::MeshResult* pumped_out = nullptr) {
   options.pump = false;
-  const qualmesh::MeshResult plain = qualmesh::mesh_plc(plc, options);
+  qualmesh::MeshResult plain_result = qualmesh::mesh_plc(plc, options);
   options.pump = true;
-  const qualmesh::MeshResult pumped = qualmesh::mesh_plc(plc, options);
+  qualmesh::MeshResult pumped_result = qualmesh::mesh_plc(plc, options);
+  const qualmesh::MeshResult& plain = plain_out ? (*plain_out = std::move(plain_result)) : plain_result;
+  const qualmesh::MeshResult& pumped = pumped_out ? (*pumped_out = std::move(pumped_result)) : pumped_result;
   ASSERT_EQ(plain.status, qualmesh::MeshStatus::Ok);
   ASSERT_EQ(pumped.status, qualmesh::MeshStatus::Ok);
   const auto& st = pumped.stats;
@@ -243,6 +247,47 @@ TEST(Pump, SizeFieldBoxPumpsSlivers) {
   EXPECT_LT(r.stats.num_slivers_after_pumping, r.stats.num_slivers_before_pumping);
 }
 
+// Boundary faces: faces of exactly one tetrahedron (sorted ids).
+constexpr Index kNoOpposite = Index(-1);
+
+std::set<std::array<Index, 3>> boundary_faces(const qualmesh::TetMesh& m) {
+  std::map<std::array<Index, 3>, int> count;
+  for (const auto& t : m.tets)
+    for (int i = 0; i < 4; ++i) {
+      std::array<Index, 3> f{t[(i + 1) & 3], t[(i + 2) & 3], t[(i + 3) & 3]};
+      std::sort(f.begin(), f.end());
+      ++count[f];
+    }
+  std::set<std::array<Index, 3>> out;
+  for (const auto& kv : count)
+    if (kv.second == 1) out.insert(kv.first);
+  return out;
+}
+
+// Pairs of coplanar boundary faces sharing an edge across which the 2D Delaunay property fails: the opposite vertex
+// of one lies strictly inside the other's circumcircle (exact predicate). Plain refinement's subfacets are the 2D
+// Delaunay triangulation of each facet's vertices, so it has none; pumping makes them the 2D weighted Delaunay
+// triangulation (Section 7.2's weighted-subfacets), which may have some.
+std::size_t num_non_delaunay_boundary_edges(const qualmesh::TetMesh& m) {
+  const auto faces = boundary_faces(m);
+  std::map<std::array<Index, 2>, std::vector<std::array<Index, 3>>> by_edge;
+  for (const auto& f : faces)
+    for (int i = 0; i < 3; ++i) by_edge[{std::min(f[i], f[(i + 1) % 3]), std::max(f[i], f[(i + 1) % 3])}].push_back(f);
+  auto point = [&](Index v) { return K::Point_3(m.points[v][0], m.points[v][1], m.points[v][2]); };
+  std::size_t bad = 0;
+  for (const auto& kv : by_edge) {
+    if (kv.second.size() != 2) continue;
+    const auto& f = kv.second[0];
+    Index d = kNoOpposite;
+    for (Index v : kv.second[1])
+      if (v != kv.first[0] && v != kv.first[1]) d = v;
+    if (!CGAL::coplanar(point(f[0]), point(f[1]), point(f[2]), point(d))) continue;
+    if (CGAL::coplanar_side_of_bounded_circle(point(f[0]), point(f[1]), point(f[2]), point(d)) == CGAL::ON_BOUNDED_SIDE)
+      ++bad;
+  }
+  return bad;
+}
+
 // The same input twice in a row, plain then pumped (run after the tests above, so other meshes came first; before
 // CGAL's handles were time-stamped it failed there and passed alone).
 TEST(Pump, Deterministic) {
@@ -310,14 +355,38 @@ TEST(Pump, NoPumpLeavesAllWeightsZero) {
   EXPECT_EQ(r.stats.num_rule4_encroachments, 0u);
 }
 
-void expect_real(const std::string& file) {
+void expect_real(const std::string& file, qualmesh::MeshResult* plain = nullptr,
+                 qualmesh::MeshResult* pumped = nullptr) {
   const std::string path = qualmesh::test::shared_path("data/plc/" + file);
   QM_REQUIRE_FILE(path);
   const Plc plc = qualmesh::read_plc(path);
-  expect_pumping_properties(plc, file);
+  expect_pumping_properties(plc, file, {}, plain, pumped);
 }
 
-TEST(PumpReal, Fandisk) { expect_real("fandisk.off"); }
+// Tetrahedra with a dihedral angle below the sliver angle that touch no acute input angle (issue 4's target: none).
+std::size_t num_slivers_away_from_acute(const qualmesh::MeshResult& r, double sliver_angle_deg) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < r.mesh.tets.size(); ++i) {
+    const auto& t = r.mesh.tets[i];
+    const auto& p = r.mesh.points;
+    if (!r.tet_touches_acute_angle.empty() && r.tet_touches_acute_angle[i]) continue;
+    n += qualmesh::tet_min_dihedral_deg(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) < sliver_angle_deg;
+  }
+  return n;
+}
+
+// Fandisk: besides the properties of expect_pumping_properties, pumping retiles facets (Section 7.2: pumping a facet
+// vertex may change its facet's subfacets; the move is accepted when the new faces cover the same part of the
+// facet) and removes most slivers away from acute input angles.
+TEST(PumpReal, Fandisk) {
+  qualmesh::MeshResult plain, pumped;
+  expect_real("fandisk.off", &plain, &pumped);
+  if (pumped.mesh.points.empty()) return;  // skipped
+  EXPECT_EQ(num_non_delaunay_boundary_edges(plain.mesh), 0u);
+  EXPECT_GT(num_non_delaunay_boundary_edges(pumped.mesh), 0u);
+  const double angle = qualmesh::MeshOptions{}.sliver_angle_deg;
+  EXPECT_LT(2 * num_slivers_away_from_acute(pumped, angle), num_slivers_away_from_acute(plain, angle));
+}
 TEST(PumpReal, Joint) { expect_real("joint.off"); }
 
 }  // namespace

@@ -16,8 +16,12 @@
 //
 // What a move must keep (checked on the exact conflict zone before anything changes, so nothing is ever undone):
 //   - no vertex hidden (every vertex of the zone but v stays on its boundary), so pumping adds and removes none;
-//   - conformity: every subsegment and subfacet that was an edge or face of the zone is an edge or face of the new
-//     star (Theorem 7.2 promises it under the paper's conditions; we check rather than trust);
+//   - conformity: every subsegment that was an edge of the zone is an edge of the new star; a subfacet of the zone
+//     is either a face of the new star or, when v lies on its facet F, replaced: the faces of the new star on F
+//     cover what the zone's subfacets of F covered (Section 7.2: after pumping, a facet is tiled by its
+//     weighted-subfacets, the 2D weighted Delaunay triangulation of its vertices, which v's weight changes). The
+//     facet's 2D triangulation is then flipped to match (retile_facets). Theorem 7.2 promises conformity under the
+//     paper's conditions; we check rather than trust;
 //   - regions: a new cell takes the region of the zone cell it was carved from (the cell on v's side of its link
 //     facet); a volume vertex's zone must lie in one region;
 //   - quality: the new star's smallest in-domain dihedral angle is strictly larger than the old one, so the mesh's
@@ -27,6 +31,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <string>
 #include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
@@ -75,6 +81,7 @@ struct LinkFacet {
 struct CellElements {
   std::vector<Key2> subsegments;
   std::vector<Key3> subfacets;
+  std::vector<Index> subfacet_facets;  // the input facet of each subfacet
 };
 
 CellElements elements_of(const MeshState& s, Ch3 c) {
@@ -90,13 +97,28 @@ CellElements elements_of(const MeshState& s, Ch3 c) {
   for (int i = 0; i < 4; ++i) {
     const Index a = ids[(i + 1) & 3], b = ids[(i + 2) & 3], cc = ids[(i + 3) & 3];
     if (a == kNoIndex || b == kNoIndex || cc == kNoIndex) continue;
-    if (subfacet_of(s, a, b, cc) != kNoIndex) e.subfacets.push_back(sorted3(a, b, cc));
+    const Index facet = subfacet_of(s, a, b, cc);
+    if (facet == kNoIndex) continue;
+    e.subfacets.push_back(sorted3(a, b, cc));
+    e.subfacet_facets.push_back(facet);
   }
   return e;
 }
 
+// Why a star (or a whole walk) was refused; counted for the survivors' diagnosis (pump_slivers' last log line).
+enum class Refusal : std::uint8_t {
+  None,             // valid
+  Hidden,           // a vertex of the zone would be hidden
+  LostSubsegment,   // a subsegment would stop being an edge
+  LostSubfacet,     // a subfacet of a facet v is not on would vanish
+  FacetNotRetiled,  // the new faces on v's facet would not cover what its subfacets covered
+  Region,           // a volume vertex's zone would cross a region boundary or the domain boundary
+  BadCell,          // a new cell flat, inverted, or above rho0 away from acute input angles
+};
+
 struct StarScore {
   bool valid = false;
+  Refusal refusal = Refusal::None;
   // When invalid: true if every larger weight is invalid too (a vertex hidden, a subsegment or subfacet lost, a
   // volume vertex's zone across regions: the zone only grows); false for a flat or inverted new cell (a degenerate
   // event) or a cell above rho0, which a larger weight may undo.
@@ -143,7 +165,10 @@ class StarEvaluator {
       if (!volume_vertex_ || incremental) break;
       const int r = c->info().region;
       if (region == kUnknownRegion) region = r;
-      if (r != region || r < 0) return result;
+      if (r != region || r < 0) {
+        result.refusal = Refusal::Region;
+        return result;
+      }
     }
     bool invalid_for_now = false;
     bool has_elements = false;
@@ -184,36 +209,98 @@ class StarEvaluator {
       for (const Ch3& c : cells)
       for (int k = 0; k < 4; ++k) {
         const Index id = c->vertex(k)->info();
-        if (id != kNoIndex && id != v_ && !std::binary_search(link_vertices_.begin(), link_vertices_.end(), id))
+        if (id != kNoIndex && id != v_ && !std::binary_search(link_vertices_.begin(), link_vertices_.end(), id)) {
+          result.refusal = Refusal::Hidden;
           return result;
+        }
       }
-    // Conformity: every subsegment and subfacet of the zone stays.
+    // Conformity (Section 7.2, Theorem 7.2). Every subsegment of the zone stays an edge. The subfacets of an input
+    // facet F may change, as the paper's weighted-subfacets do (the 2D weighted Delaunay triangulation of the
+    // vertices on F, which a facet vertex's weight changes): a subfacet of the zone that is not a face of the new
+    // star is accepted when v lies on F and the new star's faces on F, (v, a, b) over link edges ab on F, tile what
+    // the zone's subfacets of F tiled. Those faces lie in the zone and do not overlap, so equal area means the same
+    // part of F. Across a facet v is not on, a lost subfacet stays lost for every larger weight (the zone only
+    // grows): final.
+    lost_subfacets_.clear();
     for (const CellElements* e : elements) {
       for (const Key2& seg : e->subsegments) {
         if (seg[0] == v_ || seg[1] == v_) continue;  // v's edges to link vertices all exist
-        if (!link_edges_.count(seg)) return result;
+        if (!link_edges_.count(seg)) {
+          result.refusal = Refusal::LostSubsegment;
+          return result;
+        }
       }
-      for (const Key3& t : e->subfacets) {
+      for (std::size_t i = 0; i < e->subfacets.size(); ++i) {
+        const Key3& t = e->subfacets[i];
+        bool kept = false;
         if (t[0] == v_ || t[1] == v_ || t[2] == v_) {
           Key2 rest{};
           int n = 0;
           for (Index id : t)
             if (id != v_) rest[n++] = id;
-          if (!link_edges_.count(rest)) return result;
-        } else if (!link_faces_.count(t)) {
+          kept = link_edges_.count(rest) > 0;
+        } else {
+          kept = link_faces_.count(t) > 0;
+        }
+        if (kept) continue;
+        const Index facet = e->subfacet_facets[i];
+        if (!vertex_on_facet(s_, v_, facet)) {
+          result.refusal = Refusal::LostSubfacet;
           return result;
         }
+        lost_subfacets_.push_back({facet, t});
       }
+    }
+    std::sort(lost_subfacets_.begin(), lost_subfacets_.end());
+    lost_subfacets_.erase(std::unique(lost_subfacets_.begin(), lost_subfacets_.end()), lost_subfacets_.end());
+    if (!lost_subfacets_.empty() && !facets_retiled(elements)) {
+      result.final = false;
+      result.refusal = Refusal::FacetNotRetiled;
+      return result;
     }
     if (invalid_for_now) {
       result.final = false;
+      result.refusal = Refusal::BadCell;
       return result;
     }
     result.valid = true;
     return result;
   }
 
+  // The subfacets (facet, sorted ids) of the zone last scored that are not faces of the new star (empty: the
+  // boundary is unchanged); apply_weight brings those facets' 2D triangulations in line after the move.
+  const std::vector<std::pair<Index, Key3>>& lost_subfacets() const { return lost_subfacets_; }
+
  private:
+  static double area(const KPoint3& a, const KPoint3& b, const KPoint3& c) {
+    return std::sqrt(CGAL::to_double(CGAL::squared_area(a, b, c)));
+  }
+
+  // For each facet F with a lost subfacet: the area of the zone's subfacets of F that are not link faces (the part
+  // of F inside the zone) equals the area of the new star's faces on F.
+  bool facets_retiled(const std::vector<const CellElements*>& elements) const {
+    std::vector<Index> facets;
+    for (const auto& l : lost_subfacets_) facets.push_back(l.first);
+    facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
+    for (const Index facet : facets) {
+      std::unordered_set<Key3, KeyHash> inside;
+      double before = 0;
+      for (const CellElements* e : elements)
+        for (std::size_t i = 0; i < e->subfacets.size(); ++i) {
+          const Key3& t = e->subfacets[i];
+          if (e->subfacet_facets[i] != facet || link_faces_.count(t) || !inside.insert(t).second) continue;
+          before += area(s_.kpoint(t[0]), s_.kpoint(t[1]), s_.kpoint(t[2]));
+        }
+      double after = 0;
+      for (const Key2& ab : link_edges_) {
+        if (!vertex_on_facet(s_, ab[0], facet) || !vertex_on_facet(s_, ab[1], facet)) continue;
+        after += area(p_, s_.kpoint(ab[0]), s_.kpoint(ab[1]));
+      }
+      if (!(std::abs(after - before) <= 1e-9 * before)) return false;
+    }
+    return true;
+  }
+
   struct NewCell {
     bool positive = false;
     bool in_domain = false;
@@ -249,6 +336,7 @@ class StarEvaluator {
   std::unordered_set<Key3, KeyHash> link_faces_;
   std::unordered_set<Key2, KeyHash> link_edges_;
   std::vector<Index> link_vertices_;
+  std::vector<std::pair<Index, Key3>> lost_subfacets_;
 };
 
 // Critical weight of cell c for v: the weight above which v^ is closer than orthogonal to c's orthosphere.
@@ -263,7 +351,13 @@ double critical_weight(const MeshState& s, const KPoint3& p, Ch3 c) {
   return CGAL::squared_distance(p, z) - sq_r;
 }
 
+// What ended a vertex's walk over critical weights (diagnosis of the slivers that survive).
+// CapDelta / CapOmega: reached the cap, delta^2 N(v)^2 or omega0^2 f(v)^2 whichever is smaller.
+enum class WalkEnd : std::uint8_t { CapDelta, CapOmega, NoRoom, Events, CurrentInvalid, Refused };
+
 struct PumpChoice {
+  WalkEnd end = WalkEnd::CapDelta;
+  Refusal refusal = Refusal::None;  // when end == Refused
   double weight = 0;
   StarScore current;
   StarScore best;
@@ -281,8 +375,14 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
   const double w0 = vh->point().weight();
   const double f = local_feature_size_at(s, v);
   double cap = s.options.delta * s.options.delta * ctx.sq_nearest[v];
-  if (std::isfinite(f)) cap = std::min(cap, s.options.omega * s.options.omega * f * f);
-  if (!(cap > w0)) return choice;
+  if (std::isfinite(f) && s.options.omega * s.options.omega * f * f < cap) {
+    cap = s.options.omega * s.options.omega * f * f;
+    choice.end = WalkEnd::CapOmega;
+  }
+  if (!(cap > w0)) {
+    choice.end = WalkEnd::NoRoom;
+    return choice;
+  }
   const KPoint3 p = s.kpoint(v);
   StarEvaluator evaluator(s, v);
 
@@ -318,7 +418,11 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
     return out;
   };
   const StarScore current = evaluator.score(cells, link_vector(), element_ptrs());
-  if (!current.valid && current.final) return choice;
+  if (!current.valid && current.final) {
+    choice.end = WalkEnd::CurrentInvalid;
+    choice.refusal = current.refusal;
+    return choice;
+  }
   choice.current = current;
   choice.best = current;
   if (!std::isfinite(current.min_dihedral_deg)) return choice;  // no in-domain cell
@@ -341,7 +445,11 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
   for (int event = 0; event < kMaxEvents && w < cap; ++event) {
     if (w < w0) w = w0;  // rounding: a cell already due
     // Absorb n: toggle its four faces in the link.
-    if (volume_vertex && n->info().region != star_region) break;  // a volume vertex's star stays in its region
+    if (volume_vertex && n->info().region != star_region) {  // a volume vertex's star stays in its region
+      choice.end = WalkEnd::Refused;
+      choice.refusal = Refusal::Region;
+      break;
+    }
     in_zone.insert(n);
     cells.push_back(n);
     element_store.push_back(elements_of(s, n));
@@ -358,14 +466,22 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
       const Index id = n->vertex(k)->info();
       hidden = hidden || (id != kNoIndex && id != v && link_count[id] <= 0);
     }
-    if (hidden) break;  // the zone only grows: a hidden vertex stays hidden
+    if (hidden) {  // the zone only grows: a hidden vertex stays hidden
+      choice.end = WalkEnd::Refused;
+      choice.refusal = Refusal::Hidden;
+      break;
+    }
     Ch3 n2;
     Key3 through2{};
     const double w_next = next_event(&n2, &through2);
     const double hi = std::min(w_next, cap);
     if (hi > w) {
       const StarScore sc = evaluator.score(cells, link_vector(), element_ptrs(), true);
-      if (!sc.valid && sc.final) break;  // the zone only grows: a hidden vertex or a lost element stays so
+      if (!sc.valid && sc.final) {  // the zone only grows: a hidden vertex or a lost element stays so
+        choice.end = WalkEnd::Refused;
+        choice.refusal = sc.refusal;
+        break;
+      }
       if (sc.valid && better(sc, choice.best) && keeps_radius_edge(s, sc, current)) {
         choice.best = sc;
         choice.weight = 0.5 * (w + hi);
@@ -375,13 +491,71 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
     through = through2;
     w = w_next;
   }
+  if (choice.end != WalkEnd::Refused && w < cap) choice.end = WalkEnd::Events;
   choice.improves = better(choice.best, current) && choice.weight > w0;
   return choice;
 }
 
+// After a move that changed subfacets (StarEvaluator::lost_subfacets): flips the 2D triangulation of each such
+// facet F to the new star. Raising v's weight lowers v's lifted point, so, as for an insertion, the 2D weighted
+// Delaunay triangulation of F's vertices is reached by flipping edges opposite v that are not locally regular; each
+// flip makes an edge vd that the 3D star has (the target). Returns false if some lost subfacet is left (a bug: the
+// move was checked to retile F).
+bool retile_facets(MeshState& s, Index v, const std::vector<std::pair<Index, Key3>>& lost) {
+  std::vector<Index> facets;
+  for (const auto& l : lost) facets.push_back(l.first);
+  std::sort(facets.begin(), facets.end());
+  facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
+  const Vh3 v3 = s.vertices[v].handle;
+  for (const Index facet : facets) {
+    FacetMesh& fm = s.facets[facet];
+    const Vh2 v2 = fm.find(v);
+    if (v2 == Vh2()) return false;
+    bool flipped = true;
+    for (int round = 0; flipped && round < 1000; ++round) {
+      flipped = false;
+      auto fc = fm.cdt.incident_faces(v2), done = fc;
+      do {
+        Fh2 fh = fc;
+        if (fm.cdt.is_infinite(fh) || !fh->info().in_domain()) continue;
+        const int i = fh->index(v2);
+        if (fh->is_constrained(i)) continue;
+        const Fh2 g = fh->neighbor(i);
+        if (fm.cdt.is_infinite(g) || !g->info().in_domain()) continue;
+        const Vh2 d = g->vertex(fm.cdt.mirror_index(fh, i));
+        const Vh2 x = fh->vertex(Cdt2::ccw(i)), y = fh->vertex(Cdt2::cw(i));
+        Ch3 cell;
+        int i0 = 0, i1 = 0;
+        if (!s.tr.is_edge(v3, s.vertices[d->info()].handle, cell, i0, i1)) continue;
+        // xy crosses vd: the quadrilateral v x d y is strictly convex.
+        const auto o1 = CGAL::orientation(x->point(), y->point(), v2->point());
+        const auto o2 = CGAL::orientation(x->point(), y->point(), d->point());
+        const auto o3 = CGAL::orientation(v2->point(), d->point(), x->point());
+        const auto o4 = CGAL::orientation(v2->point(), d->point(), y->point());
+        if (o1 == CGAL::COLLINEAR || o2 == CGAL::COLLINEAR || o1 == o2 || o3 == CGAL::COLLINEAR ||
+            o4 == CGAL::COLLINEAR || o3 == o4)
+          continue;
+        const FaceInfo2 info = fh->info();
+        fm.cdt.flip(fh, i);
+        auto nc = fm.cdt.incident_faces(v2), ndone = nc;
+        do {
+          const Fh2 f = nc;
+          if (!fm.cdt.is_infinite(f) && f->has_vertex(d)) f->info() = info;
+        } while (++nc != ndone);
+        flipped = true;
+        break;  // the circulator is stale
+      } while (++fc != done);
+    }
+  }
+  for (const auto& l : lost)
+    if (is_subfacet(s, l.first, l.second[0], l.second[1], l.second[2])) return false;
+  return true;
+}
+
 // Re-checks `weight` on CGAL's exact conflict zone and applies it; false (nothing changed) when a check fails or
 // the star is not better.
-bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current, std::vector<Index>* touched) {
+bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current, std::vector<Index>* touched,
+                  std::size_t* num_retiled, std::size_t* num_retile_failures) {
   const Vh3 vh = s.vertices[v].handle;
   const KWeightedPoint3 wp(s.kpoint(v), weight);
   std::vector<Ch3> cells;
@@ -434,11 +608,49 @@ bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current
     c->info().region = s.tr.is_infinite(c) ? kOutsideRegion : o.region;
     c->info().guess = kUnknownRegion;
   }
+  if (!evaluator.lost_subfacets().empty()) {
+    ++*num_retiled;
+    if (!retile_facets(s, v, evaluator.lost_subfacets())) ++*num_retile_failures;
+  }
   if (s.tr.number_of_vertices() != num_before) {
     // Unreachable: the zone check above keeps every vertex; a hidden vertex would break "no vertex removed".
     throw std::logic_error("pumping hid a vertex");
   }
   return true;
+}
+
+// One log line on the tetrahedra left below the sliver angle away from acute input angles: how many of their
+// vertices lie on the boundary (segment, facet or input vertices) and how each vertex's last walk ended.
+template <typename Bad>
+void log_survivors(const MeshState& s, const std::vector<Bad>& bad, const std::vector<std::uint8_t>& last_end,
+                   const std::vector<std::uint8_t>& last_refusal, std::uint8_t improved, std::uint8_t not_tried) {
+  std::size_t by_boundary[5] = {0, 0, 0, 0, 0};
+  std::map<std::string, std::size_t> ends;
+  std::size_t num = 0;
+  static const char* const kEnd[] = {"cap-delta", "cap-omega", "no-room", "events", "current-invalid", "refused"};
+  static const char* const kRefusal[] = {"none", "hidden", "lost-subsegment", "lost-subfacet", "facet-not-retiled",
+                                          "region", "bad-cell"};
+  for (const auto& b : bad) {
+    if (tet_touches_acute_angle(s, b.ids)) continue;
+    ++num;
+    int boundary = 0;
+    for (const Index v : b.ids) {
+      boundary += s.vertices[v].kind != VertexKind::Volume;
+      const std::uint8_t e = last_end[v];
+      const std::string key = e == not_tried  ? "not-tried"
+                              : e == improved ? "improved-but-not-best"
+                              : e == std::uint8_t(WalkEnd::Refused) ? std::string("refused:") + kRefusal[last_refusal[v]]
+                                                                    : std::string(kEnd[e]);
+      ++ends[key];
+    }
+    ++by_boundary[boundary];
+  }
+  std::string line = "pumping: " + std::to_string(num) + " tets below the sliver angle away from acute angles; by "
+                     "boundary vertices 0/1/2/3/4: ";
+  for (int k = 0; k < 5; ++k) line += (k ? "/" : "") + std::to_string(by_boundary[k]);
+  line += "; vertex walks:";
+  for (const auto& kv : ends) line += " " + kv.first + "=" + std::to_string(kv.second);
+  s.log_line(line);
 }
 
 }  // namespace
@@ -484,6 +696,10 @@ void pump_slivers(MeshState& s) {
   constexpr int kMaxPasses = 8;
   std::vector<std::uint8_t> dirty(s.vertices.size(), 1);
   std::vector<Index> touched;
+  std::size_t num_retiled = 0, num_retile_failures = 0;  // moves that changed subfacets; of those, not followed
+  // Per vertex, how its last walk ended (WalkEnd, or kImproved; kNotTried: never walked) and why (Refusal).
+  constexpr std::uint8_t kImproved = 200, kNotTried = 255;
+  std::vector<std::uint8_t> last_end(s.vertices.size(), kNotTried), last_refusal(s.vertices.size(), 0);
   for (int pass = 0; pass < kMaxPasses && !bad.empty(); ++pass) {
     std::size_t moves = 0;
     touched.clear();
@@ -499,11 +715,14 @@ void pump_slivers(MeshState& s) {
       for (const Index v : ids) {
         if (!dirty[v]) continue;
         const PumpChoice choice = best_weight(s, ctx, v);
+        last_end[v] = std::uint8_t(choice.end);
+        last_refusal[v] = std::uint8_t(choice.refusal);
+        if (choice.improves) last_end[v] = kImproved;
         if (!choice.improves) dirty[v] = 0;
         if (choice.improves && (best_v == kNoIndex || better(choice.best, best.best))) best = choice, best_v = v;
       }
       if (best_v == kNoIndex) continue;
-      if (apply_weight(s, best_v, best.weight, best.current, &touched)) {
+      if (apply_weight(s, best_v, best.weight, best.current, &touched, &num_retiled, &num_retile_failures)) {
         ++moves;
         ++s.stats.num_pump_moves;
         for (const Index t : touched) dirty[t] = 1;
@@ -522,6 +741,10 @@ void pump_slivers(MeshState& s) {
   // Statistics.
   s.stats.num_vertices_after_pumping = s.tr.number_of_vertices();
   s.stats.num_slivers_after_pumping = collect().first;
+  s.log_line("pumping: " + std::to_string(num_retiled) + " moves changed subfacets" +
+             (num_retile_failures ? ", " + std::to_string(num_retile_failures) + " facet triangulations not retiled (bug)"
+                                  : std::string()));
+  log_survivors(s, bad, last_end, last_refusal, kImproved, kNotTried);
   for (Index v = 0; v < s.vertices.size(); ++v) {
     if (s.vertices[v].handle == Vh3()) continue;
     const double w = s.vertices[v].handle->point().weight();
