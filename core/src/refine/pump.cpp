@@ -28,6 +28,8 @@
 //     minimum dihedral angle never decreases; and no new cell exceeds rho0 unless it touches an acute input angle
 //     (then not beyond the old star's worst), so Rule 3's radius-edge bound survives pumping.
 // Order: slivers worst first, each time the best of its four vertices; passes repeat while some move is accepted.
+// Then, for the slivers left, the vertices across their faces (a neighbour's star grown over the sliver), accepted
+// only when the new star beats every cell the move destroys. Last, one log line says why the rest survive.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -368,8 +370,21 @@ struct PumpContext {
   std::vector<double> sq_nearest;  // N(v)^2 per vertex, measured before pumping
 };
 
+// The score of cells a move destroys (in-domain ones): their smallest dihedral angle and sliver deficit.
+void add_destroyed_cell(const MeshState& s, Ch3 c, StarScore* score) {
+  if (s.tr.is_infinite(c) || c->info().region < 0) return;
+  const double angle = tet_min_dihedral_deg(s.point(c->vertex(0)->info()), s.point(c->vertex(1)->info()),
+                                            s.point(c->vertex(2)->info()), s.point(c->vertex(3)->info()));
+  score->min_dihedral_deg = std::min(score->min_dihedral_deg, angle);
+  score->sliver_deficit_deg += std::max(0.0, s.options.sliver_angle_deg - angle);
+}
+
 // Walks the critical weights of v from its current weight up to its cap (see the file comment).
-PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
+// `target` (optional): a sliver v is not a vertex of, to be removed by growing v's star over it (a neighbour of the
+// sliver, after its own vertices failed). Then a star is acceptable when the sliver is in the zone and the new star
+// beats every cell it destroys (the zone, not only v's old star: the sliver is not in v's star), so the mesh's
+// smallest dihedral angle still cannot drop.
+PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v, const Ch3* target = nullptr) {
   PumpChoice choice;
   const Vh3 vh = s.vertices[v].handle;
   const double w0 = vh->point().weight();
@@ -426,6 +441,10 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
   choice.current = current;
   choice.best = current;
   if (!std::isfinite(current.min_dihedral_deg)) return choice;  // no in-domain cell
+  StarScore destroyed;  // target mode: the zone's cells
+  if (target)
+    for (const Ch3& c : cells) add_destroyed_cell(s, c, &destroyed);
+  bool found = false;
 
   std::unordered_map<Ch3, double, CellHash> crit_cache;
   auto next_event = [&](Ch3* cell, Key3* through) {
@@ -451,6 +470,7 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
       break;
     }
     in_zone.insert(n);
+    if (target) add_destroyed_cell(s, n, &destroyed);
     cells.push_back(n);
     element_store.push_back(elements_of(s, n));
     for (int i = 0; i < 4; ++i) {
@@ -482,7 +502,15 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
         choice.refusal = sc.refusal;
         break;
       }
-      if (sc.valid && better(sc, choice.best) && keeps_radius_edge(s, sc, current)) {
+      if (target) {
+        if (sc.valid && in_zone.count(*target) && better(sc, destroyed) && keeps_radius_edge(s, sc, current) &&
+            (!found || better(sc, choice.best))) {
+          choice.best = sc;
+          choice.current = destroyed;
+          choice.weight = 0.5 * (w + hi);
+          found = true;
+        }
+      } else if (sc.valid && better(sc, choice.best) && keeps_radius_edge(s, sc, current)) {
         choice.best = sc;
         choice.weight = 0.5 * (w + hi);
       }
@@ -492,7 +520,7 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v) {
     w = w_next;
   }
   if (choice.end != WalkEnd::Refused && w < cap) choice.end = WalkEnd::Events;
-  choice.improves = better(choice.best, current) && choice.weight > w0;
+  choice.improves = (target ? found : better(choice.best, current)) && choice.weight > w0;
   return choice;
 }
 
@@ -554,8 +582,10 @@ bool retile_facets(MeshState& s, Index v, const std::vector<std::pair<Index, Key
 
 // Re-checks `weight` on CGAL's exact conflict zone and applies it; false (nothing changed) when a check fails or
 // the star is not better.
+// `target` (optional, see best_weight): the sliver must be in the zone, and the new star must beat all the cells it
+// destroys (then `current` bounds only the radius-edge ratio).
 bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current, std::vector<Index>* touched,
-                  std::size_t* num_retiled, std::size_t* num_retile_failures) {
+                  std::size_t* num_retiled, std::size_t* num_retile_failures, const Ch3* target = nullptr) {
   const Vh3 vh = s.vertices[v].handle;
   const KWeightedPoint3 wp(s.kpoint(v), weight);
   std::vector<Ch3> cells;
@@ -579,8 +609,14 @@ bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current
   for (const auto& e : elements) ptrs.push_back(&e);
   StarEvaluator evaluator(s, v);
   const StarScore sc = evaluator.score(cells, link, ptrs);
-  if (!sc.valid || !better(sc, current) || !keeps_radius_edge(s, sc, current))
+  if (!sc.valid || !keeps_radius_edge(s, sc, current)) return false;
+  if (target) {
+    StarScore destroyed;
+    for (const Ch3& c : cells) add_destroyed_cell(s, c, &destroyed);
+    if (!zone.count(*target) || !better(sc, destroyed)) return false;
+  } else if (!better(sc, current)) {
     return false;
+  }
 
   // Regions of the new cells: the zone cell each was carved from, found across its outer face after insertion.
   struct Outer {
@@ -697,6 +733,7 @@ void pump_slivers(MeshState& s) {
   std::vector<std::uint8_t> dirty(s.vertices.size(), 1);
   std::vector<Index> touched;
   std::size_t num_retiled = 0, num_retile_failures = 0;  // moves that changed subfacets; of those, not followed
+  std::size_t num_neighbour_moves = 0;
   // Per vertex, how its last walk ended (WalkEnd, or kImproved; kNotTried: never walked) and why (Refusal).
   constexpr std::uint8_t kImproved = 200, kNotTried = 255;
   std::vector<std::uint8_t> last_end(s.vertices.size(), kNotTried), last_refusal(s.vertices.size(), 0);
@@ -738,10 +775,48 @@ void pump_slivers(MeshState& s) {
     collect();
   }
 
+  // Slivers their own vertices could not remove: pump a neighbour, the vertex across one of the sliver's faces,
+  // over it (the sliver joins that vertex's zone). Beyond the paper's step 3, which pumps sliver vertices only;
+  // the same caps and checks apply, and the new star must beat every cell it destroys.
+  for (int pass = 0; pass < kMaxPasses && !bad.empty(); ++pass) {
+    std::size_t moves = 0;
+    for (const Bad& b : bad) {
+      Ch3 c;
+      const auto& ids = b.ids;
+      if (!s.tr.is_cell(s.vertices[ids[0]].handle, s.vertices[ids[1]].handle, s.vertices[ids[2]].handle,
+                        s.vertices[ids[3]].handle, c))
+        continue;  // already gone
+      Index best_v = kNoIndex;
+      PumpChoice best;
+      for (int i = 0; i < 4; ++i) {
+        const Ch3 n = c->neighbor(i);
+        if (s.tr.is_infinite(n)) continue;
+        const Index u = n->vertex(n->index(c))->info();
+        if (u == kNoIndex) continue;
+        const PumpChoice choice = best_weight(s, ctx, u, &c);
+        if (choice.improves && (best_v == kNoIndex || better(choice.best, best.best))) best = choice, best_v = u;
+      }
+      if (best_v == kNoIndex) continue;
+      touched.clear();
+      if (apply_weight(s, best_v, best.weight, best.current, &touched, &num_retiled, &num_retile_failures, &c)) {
+        ++moves;
+        ++num_neighbour_moves;
+        ++s.stats.num_pump_moves;
+      } else {
+        ++s.stats.num_pump_rejected;
+      }
+    }
+    s.log_line("pumping neighbours pass " + std::to_string(pass + 1) + ": " + std::to_string(moves) +
+               " weights changed");
+    if (moves == 0) break;
+    collect();
+  }
+
   // Statistics.
   s.stats.num_vertices_after_pumping = s.tr.number_of_vertices();
   s.stats.num_slivers_after_pumping = collect().first;
-  s.log_line("pumping: " + std::to_string(num_retiled) + " moves changed subfacets" +
+  s.log_line("pumping: " + std::to_string(num_neighbour_moves) + " moves of sliver neighbours, " +
+             std::to_string(num_retiled) + " moves changed subfacets" +
              (num_retile_failures ? ", " + std::to_string(num_retile_failures) + " facet triangulations not retiled (bug)"
                                   : std::string()));
   log_survivors(s, bad, last_end, last_refusal, kImproved, kNotTried);
