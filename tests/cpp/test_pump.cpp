@@ -387,6 +387,19 @@ TEST(PumpReal, Fandisk) {
   const double angle = qualmesh::MeshOptions{}.sliver_angle_deg;
   EXPECT_LT(2 * num_slivers_away_from_acute(pumped, angle), num_slivers_away_from_acute(plain, angle));
 }
+// Regression (issue 4): couplingdown meshed with its triangles kept (no coplanar merge) had one locally non-regular
+// face after pumping. The triangulation was regular; the output lost the weight of its first vertex, which pumping
+// had weighted (extract.cpp assigned the weights array only from the next weighted vertex on). The properties of
+// expect_pumping_properties catch it twice: weighted Delaunay, and as many nonzero weights as pumped vertices.
+// Disabled until that two-line fix of extract.cpp (handed to its owner) is in; it passes with it.
+TEST(PumpReal, DISABLED_CouplingdownKeepTriangles) {
+  const std::string path = qualmesh::test::shared_path("data/plc/couplingdown.off");
+  QM_REQUIRE_FILE(path);
+  qualmesh::ReadOptions read_options;
+  read_options.merge_coplanar = false;
+  expect_pumping_properties(qualmesh::read_plc(path, read_options), "couplingdown (triangles)");
+}
+
 TEST(PumpReal, Joint) { expect_real("joint.off"); }
 
 }  // namespace
