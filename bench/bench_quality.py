@@ -22,9 +22,10 @@ QualMesh without pumping: `qualmesh mesh --no-pump` when `qualmesh mesh --help` 
 build has no pumping and the plain `qualmesh mesh` row is all there is (the table says so).
 
 Columns: vertices and tets as the checker counts them, wall time of the mesher (best of --repeat; CGAL: the last
-sizing run, in a fresh python3), min dihedral angle, tets with min dihedral under 5/10/15 deg, relative volume
-error and worst relative facet-area error against the input, whether the checker passes (structure and
-conformity), and locally non-regular faces (weighted Delaunay test; TetGen's output is constrained Delaunay and
+sizing run, in a fresh python3), min dihedral angle, tets with min dihedral under 5/10/15 deg, QualMesh's own count of
+tets under its sliver angle (15 deg) that touch no acute input angle (issue 4's target is none; n/a for peers, which
+do not know the input's acute angles), relative volume error and worst relative facet-area error against the input,
+whether the checker passes (structure and conformity), and locally non-regular faces (weighted Delaunay test; TetGen's output is constrained Delaunay and
 Mesh_3's a regular triangulation of weights it does not write, so only QualMesh's is expected to be 0).
 Not a test: a benchmark of one run on a possibly shared machine; compare the rows of one run only.
 
@@ -35,6 +36,7 @@ a model QualMesh cannot mesh within --timeout is listed as skipped.
 import argparse
 import json
 import math
+import re
 import shutil
 import subprocess
 import sys
@@ -149,17 +151,24 @@ def run_cgal(poly, surface, target_vertices, start_size, args, tmp):
     return result, note
 
 
-def row(model, tool, seconds, report):
+def away_from_acute(stdout):
+    """QualMesh's own count of tetrahedra below the sliver angle that touch no acute input angle (issue 4's target:
+    none), from the summary line of `qualmesh mesh`; "n/a" when the line is absent."""
+    m = re.search(r"away from acute input angles: min dihedral [^,]*, (\d+) tetrahedra below", stdout)
+    return m.group(1) if m else "n/a"
+
+
+def row(model, tool, seconds, report, away="n/a"):
     if isinstance(report, str):
         text = " ".join(report.replace("|", "/").split())  # one table cell: no newline, no bar
-        return f"| {model} | {tool} | {text} |||||||||||"
+        return f"| {model} | {tool} | {text} ||||||||||||"
     vertices = report["num_points"] - report["num_unused_points"]
     vol = report.get("volume_relative_error")
     area = report.get("max_facet_area_relative_error")
     fmt = lambda x: "n/a" if x is None else f"{x:.1e}"  # noqa: E731
     return (f"| {model} | {tool} | {vertices} | {report['num_tets']} | {seconds:.2f} | "
             f"{report['min_dihedral_deg']:.2f} | {report['num_tets_min_dihedral_below_5']} | "
-            f"{report['num_tets_min_dihedral_below_10']} | {report['num_tets_min_dihedral_below_15']} | "
+            f"{report['num_tets_min_dihedral_below_10']} | {report['num_tets_min_dihedral_below_15']} | {away} | "
             f"{fmt(vol)} | {fmt(area)} | {'yes' if report['ok'] else 'no (' + str(report['num_problems']) + ')'} | "
             f"{report.get('num_non_regular_faces', 'n/a')} |")
 
@@ -213,12 +222,12 @@ def main():
                                                      f"{proc.stderr.strip()[-100:]}".replace("|", "/")))
                     continue
                 report = check(args.qualmesh, vtu, poly)
-                lines.append(row(name, tool, best, report))
+                lines.append(row(name, tool, best, report, away_from_acute(proc.stdout)))
                 if not extra and not isinstance(report, str):
                     default_report, default_vtu = report, vtu
             if default_report is None:
                 lines.append(f"| {name} | (peers skipped: QualMesh's default run failed or ran past {args.timeout} s) "
-                             "|||||||||||")
+                             "||||||||||||")
                 continue
 
             best, proc = math.inf, None
@@ -262,9 +271,9 @@ def main():
                     lines.append(row(name, "CGAL Mesh_3", *result))
                 notes.append(f"{name}: CGAL surface = {how}; {note}")
 
-    print("| model | tool | vertices | tets | time s | min dihedral deg | <5 | <10 | <15 | volume error | "
-          "facet-area error | checker ok | non-regular faces |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| model | tool | vertices | tets | time s | min dihedral deg | <5 | <10 | <15 | <15 away from acute | "
+          "volume error | facet-area error | checker ok | non-regular faces |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for line in lines:
         print(line)
     print()
