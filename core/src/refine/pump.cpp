@@ -506,7 +506,6 @@ PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v, const Ch3*
         if (sc.valid && in_zone.count(*target) && better(sc, destroyed) && keeps_radius_edge(s, sc, current) &&
             (!found || better(sc, choice.best))) {
           choice.best = sc;
-          choice.current = destroyed;
           choice.weight = 0.5 * (w + hi);
           found = true;
         }
