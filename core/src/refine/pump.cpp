@@ -777,7 +777,10 @@ void pump_slivers(MeshState& s) {
   // Slivers their own vertices could not remove: pump a neighbour, the vertex across one of the sliver's faces,
   // over it (the sliver joins that vertex's zone). Beyond the paper's step 3, which pumps sliver vertices only;
   // the same caps and checks apply, and the new star must beat every cell it destroys.
-  for (int pass = 0; pass < kMaxPasses && !bad.empty(); ++pass) {
+  // Only slivers away from acute input angles (issue 4's target; at an acute angle the shortest edge is forced and
+  // pinion's thousands of such tets made this pass cost more than all the others), and a few passes.
+  constexpr int kMaxNeighbourPasses = 3;
+  for (int pass = 0; pass < kMaxNeighbourPasses && !bad.empty(); ++pass) {
     std::size_t moves = 0;
     for (const Bad& b : bad) {
       Ch3 c;
@@ -785,6 +788,7 @@ void pump_slivers(MeshState& s) {
       if (!s.tr.is_cell(s.vertices[ids[0]].handle, s.vertices[ids[1]].handle, s.vertices[ids[2]].handle,
                         s.vertices[ids[3]].handle, c))
         continue;  // already gone
+      if (tet_touches_acute_angle(s, ids)) continue;
       Index best_v = kNoIndex;
       PumpChoice best;
       for (int i = 0; i < 4; ++i) {
