@@ -143,7 +143,7 @@ double InputComplex::segment_facet_angle_deg(Index v, Index segment, Index facet
       if (loop[k] != v) continue;
       const Point3 p = sub(plc->vertices[loop[(k + loop.size() - 1) % loop.size()]], plc->vertices[v]);
       const Point3 q = sub(plc->vertices[loop[(k + 1) % loop.size()]], plc->vertices[v]);
-      const bool inside = dot(cross(p, proj), cross(p, q)) >= 0 && dot(cross(proj, q), cross(p, q)) >= 0;
+      const bool inside = facet_covers_ray(facet, plc->vertices[v], proj, v, kNoIndex);
       const double angle = inside ? std::abs(90.0 - angle_deg(d, n)) : std::min(angle_deg(d, p), angle_deg(d, q));
       best = std::min(best, angle);
     }
@@ -208,20 +208,7 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
         const bool in_a = facet_has_segment(a.id, s), in_b = facet_has_segment(b.id, s);
         if (share_segment && !(in_a && in_b)) continue;  // facets through a common segment: the dihedral decides
         if (in_a && in_b) {
-          // Shared segment: dihedral angle from the inward directions.
-          const Segment& seg = segments[s];
-          const Point3 o = plc->vertices[seg.a];
-          const Point3 dir = normalized(sub(plc->vertices[seg.b], o));
-          auto inward = [&](Index f) {
-            Point3 centroid{0, 0, 0};
-            for (Index w : facet_vertices[f])
-              for (int c = 0; c < 3; ++c) centroid[c] += plc->vertices[w][c] / double(facet_vertices[f].size());
-            Point3 d = sub(centroid, o);
-            const double t = dot(d, dir);
-            for (int c = 0; c < 3; ++c) d[c] -= t * dir[c];
-            return d;
-          };
-          if (angle_deg(inward(a.id), inward(b.id)) < kAcuteDeg) acute = true;
+          if (facets_acute_along(s, a.id, b.id)) acute = true;  // shared segment: the dihedral angle
         } else if (in_a && !in_b) {
           if (segment_facet_angle_deg(v, s, b.id) < kAcuteDeg) acute = true;
         } else if (in_b && !in_a) {
@@ -232,6 +219,52 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
   }
   acute_pair_cache.emplace(cache_key, acute);
   return acute;
+}
+
+bool InputComplex::facet_covers_ray(Index facet, const Point3& origin, const Point3& dir, Index skip,
+                                    Index skip2) const {
+  const PlaneFrame& fr = frames[facet];
+  const double dx = dot(dir, fr.e1), dy = dot(dir, fr.e2);
+  const auto local = [&](Index w) {
+    const Point3 r = sub(plc->vertices[w], origin);
+    const double u = dot(r, fr.e1), v = dot(r, fr.e2);
+    return std::array<double, 2>{u * dx + v * dy, -u * dy + v * dx};  // along the ray, across it
+  };
+  bool inside = false;
+  for (const auto& loop : plc->facets[facet].polygons) {
+    if (loop.size() < 3) continue;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const Index a = loop[k], b = loop[(k + 1) % loop.size()];
+      if (skip2 == kNoIndex ? (a == skip || b == skip) : ((a == skip && b == skip2) || (a == skip2 && b == skip)))
+        continue;
+      const auto p = local(a), q = local(b);
+      if ((p[1] > 0) == (q[1] > 0)) continue;  // half-open rule: a vertex on the ray counts once
+      const double x = p[0] + (q[0] - p[0]) * (0 - p[1]) / (q[1] - p[1]);
+      if (x > 0) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+std::vector<Point3> InputComplex::inward_directions(Index facet, Index segment) const {
+  const Segment& seg = segments[segment];
+  const Point3& a = plc->vertices[seg.a];
+  const Point3& b = plc->vertices[seg.b];
+  const Point3 mid{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+  const Point3 d = normalized(cross(frames[facet].normal, sub(b, a)));
+  const Point3 minus{-d[0], -d[1], -d[2]};
+  std::vector<Point3> out;
+  if (facet_covers_ray(facet, mid, d, seg.a, seg.b)) out.push_back(d);
+  if (facet_covers_ray(facet, mid, minus, seg.a, seg.b)) out.push_back(minus);
+  if (out.empty()) out = {d, minus};  // degenerate loops: both sides, so an acute side is not missed
+  return out;
+}
+
+bool InputComplex::facets_acute_along(Index segment, Index f, Index g) const {
+  for (const Point3& df : inward_directions(f, segment))
+    for (const Point3& dg : inward_directions(g, segment))
+      if (angle_deg(df, dg) < kAcuteDeg) return true;
+  return false;
 }
 
 InputComplex build_input_complex(const Plc& plc) {
@@ -333,17 +366,8 @@ InputComplex build_input_complex(const Plc& plc) {
         const Point3& n = c.frames[f].normal;
         const double h = dot(d, n);
         const Point3 proj{d[0] - h * n[0], d[1] - h * n[1], d[2] - h * n[2]};
-        for (const auto& loop : plc.facets[f].polygons) {
-          if (loop.size() < 3) continue;
-          for (std::size_t k = 0; k < loop.size(); ++k) {
-            if (loop[k] != v) continue;
-            const Point3 p = sub(plc.vertices[loop[(k + loop.size() - 1) % loop.size()]], plc.vertices[v]);
-            const Point3 q = sub(plc.vertices[loop[(k + 1) % loop.size()]], plc.vertices[v]);
-            const bool inside = dot(cross(p, proj), cross(p, q)) >= 0 && dot(cross(proj, q), cross(p, q)) >= 0;
-            const double angle = inside ? std::abs(90.0 - angle_deg(d, n)) : std::min(angle_deg(d, p), angle_deg(d, q));
-            if (angle < kAcuteDeg) acute = true;
-          }
-        }
+        (void)proj;
+        if (c.segment_facet_angle_deg(v, segs[i], f) < kAcuteDeg) acute = true;
       }
     }
     c.acute_vertex[v] = acute;
@@ -352,21 +376,9 @@ InputComplex build_input_complex(const Plc& plc) {
     const auto& fs = c.segment_facets[s];
     if (fs.size() < 2) continue;
     const Segment& seg = c.segments[s];
-    const Point3 a = plc.vertices[seg.a];
-    const Point3 dir = normalized(sub(plc.vertices[seg.b], a));
-    auto inward = [&](Index f) {
-      // Direction in the facet's plane, perpendicular to the segment, towards the facet's vertex centroid.
-      Point3 centroid{0, 0, 0};
-      for (Index v : c.facet_vertices[f])
-        for (int k = 0; k < 3; ++k) centroid[k] += plc.vertices[v][k] / double(c.facet_vertices[f].size());
-      Point3 d = sub(centroid, a);
-      const double t = dot(d, dir);
-      for (int k = 0; k < 3; ++k) d[k] -= t * dir[k];
-      return d;
-    };
     for (std::size_t i = 0; i < fs.size(); ++i)
       for (std::size_t j = i + 1; j < fs.size(); ++j)
-        if (angle_deg(inward(fs[i].facet), inward(fs[j].facet)) < kAcuteDeg) {
+        if (c.facets_acute_along(s, fs[i].facet, fs[j].facet)) {
           c.acute_vertex[seg.a] = 1;
           c.acute_vertex[seg.b] = 1;
         }

@@ -77,6 +77,17 @@ struct InputComplex {
   bool element_contains_vertex(ElementRef e, Index v) const;
   // Angle (degrees) between segment s and facet f at their common input vertex v (s not in f).
   double segment_facet_angle_deg(Index v, Index segment, Index facet) const;
+  // Does facet f cover the points just beyond `origin` (on f's plane) in the in-plane direction `dir`? Even-odd
+  // parity of the crossings of the ray origin + t dir (t > 0) with f's closed-polygon edges, skipping the edges
+  // through `origin`: those incident to input vertex `skip` (origin = that vertex), or edge (skip, skip2) (origin =
+  // its midpoint). No epsilon: the far end of the ray is outside, so an odd count means the near end is inside,
+  // whatever the facet's shape (non-convex, with holes, sliver triangles of a CAD tessellation).
+  bool facet_covers_ray(Index facet, const Point3& origin, const Point3& dir, Index skip, Index skip2) const;
+  // Directions in facet f's plane, perpendicular to segment s (in f), that point into f next to s: one for a
+  // boundary edge of f, two for a segment inside f.
+  std::vector<Point3> inward_directions(Index facet, Index segment) const;
+  // Dihedral angle below 90 degrees between facets f and g along their common segment s, on some pair of sides.
+  bool facets_acute_along(Index segment, Index f, Index g) const;
   mutable std::unordered_map<std::uint64_t, bool> acute_pair_cache;
 };
 

@@ -26,6 +26,7 @@ TetMesh extract_mesh(MeshState& s, std::vector<std::uint8_t>& touches_acute) {
   };
   std::vector<Face> faces;
   sort_given_up(s);
+  remove_flat_boundary_cells(s);
   for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) {
     const int region = c->info().region;
     if (region < 0) continue;

@@ -25,6 +25,7 @@
 // the last-resort stop.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "qualmesh/error.h"
@@ -203,6 +204,31 @@ Index facet_under_flat_cell(const MeshState& s, Ch3 c) {
   return kNoIndex;
 }
 
+// A nearly flat cell of four nearly cocircular points (two segments through an acute apex carry vertices at equal
+// radii, which make isosceles trapezoids): rounding makes its circumsphere arbitrarily large and its centre
+// meaningless. Returns the centre of the circle through its largest face when the circumsphere is more than 100
+// times that circle's radius or the volume is negligible: the circle all four points nearly share, whose centre
+// lies inside the circumsphere (the sphere meets that face's plane in exactly that circle), so Rule 3 can insert it
+// instead.
+std::optional<KPoint3> degenerate_cell_centre(const MeshState& s, const std::array<Index, 4>& v) {
+  double sq_rf = 0;
+  KPoint3 zf;
+  for (int i = 0; i < 4; ++i) {
+    const KPoint3 a = s.kpoint(v[(i + 1) & 3]), b = s.kpoint(v[(i + 2) & 3]), d = s.kpoint(v[(i + 3) & 3]);
+    if (CGAL::collinear(a, b, d)) continue;
+    const double r = CGAL::squared_radius(a, b, d);
+    if (r > sq_rf) sq_rf = r, zf = CGAL::circumcenter(a, b, d);
+  }
+  if (!(sq_rf > 0)) return std::nullopt;
+  const KPoint3 p0 = s.kpoint(v[0]), p1 = s.kpoint(v[1]), p2 = s.kpoint(v[2]), p3 = s.kpoint(v[3]);
+  // Degenerate: exactly coplanar, a volume below 1e-12 of the cube of the face circle's radius (rounding can make
+  // it non-positive in the output), or a circumsphere 100 times that circle.
+  if (CGAL::coplanar(p0, p1, p2, p3) || std::fabs(CGAL::volume(p0, p1, p2, p3)) < 1e-12 * sq_rf * std::sqrt(sq_rf) ||
+      !(CGAL::squared_radius(p0, p1, p2, p3) < 1e4 * sq_rf))
+    return zf;
+  return std::nullopt;
+}
+
 TetVerdict judge_tet(MeshState& s, Ch3 c) {
   Index ids[4];
   for (int k = 0; k < 4; ++k) ids[k] = c->vertex(k)->info();
@@ -229,8 +255,13 @@ TetVerdict judge_tet(MeshState& s, Ch3 c) {
   const bool flat = volume < 1e-6 * sq_max * std::sqrt(sq_max) && facet_under_flat_cell(s, c) != kNoIndex;
   const double sq_r = CGAL::squared_radius(p0, p1, p2, p3);
   if (!flat && !(sq_r > s.sq_radius_edge_bound * sq_min)) return TetVerdict::Good;
-  // Shortest edge forced by an acute input angle (the one definition: tet_touches_acute_angle()).
-  if (shortest_edge_forced_by_acute_angle(s, ids[emin_a], ids[emin_b])) return TetVerdict::ForcedBySmallAngle;
+  // Shortest edge forced by an acute input angle (the one definition: tet_touches_acute_angle()). A degenerate
+  // (flat, nearly cocircular) cell off the facets is split even there (at its circle's centre, process_tet): no
+  // output element may be that bad. One on a facet is left (splitting those cascades at concentric shells):
+  // extraction flips it out of the domain (remove_flat_boundary_cells()).
+  if (shortest_edge_forced_by_acute_angle(s, ids[emin_a], ids[emin_b]) &&
+      (flat || !degenerate_cell_centre(s, {ids[0], ids[1], ids[2], ids[3]})))
+    return TetVerdict::ForcedBySmallAngle;
   return TetVerdict::Skinny;
 }
 
@@ -371,7 +402,7 @@ void split_subsegment(MeshState& s, Index seg, Index u, Index v) {
 
 void process_subsegment(MeshState& s, const SubsegmentEntry& e) {
   if (subsegment_of(s, e.u, e.v) != e.segment) return;  // stale
-  Index enc;
+  Index enc = kNoIndex;
   if (!e.forced && !subsegment_encroached(s, e.u, e.v, &enc)) return;
   split_subsegment(s, e.segment, e.u, e.v);
 }
@@ -383,12 +414,12 @@ void check_new_subfacets(MeshState& s, Index facet, const std::vector<std::array
 }
 
 // Splits subfacet abc of `facet` at its circumcentre, unless that centre encroaches a subsegment (then those
-// subsegments are queued for Rule 1 and the centre is rejected).
-void split_subfacet(MeshState& s, Index facet, const std::array<Index, 3>& abc) {
+// subsegments are queued for Rule 1 and the centre is rejected). Returns whether it inserted the centre.
+bool split_subfacet(MeshState& s, Index facet, const std::array<Index, 3>& abc) {
   const KPoint3 a = s.kpoint(abc[0]), b = s.kpoint(abc[1]), c = s.kpoint(abc[2]);
   const KPoint3 center = CGAL::circumcenter(a, b, c);
   ConflictZone cz;
-  if (!find_conflict_zone(s, center, hint_of(s, abc[0]), cz)) return;
+  if (!find_conflict_zone(s, center, hint_of(s, abc[0]), cz)) return false;
   Candidates cand;
   collect_candidates(s, cz, cand);
   bool rejected = false;
@@ -410,15 +441,16 @@ void split_subfacet(MeshState& s, Index facet, const std::array<Index, 3>& abc) 
         rejected = true;
       }
     }
-    if (!rejected) return;
+    if (!rejected) return false;
   }
   if (rejected) {
     ++s.stats.num_rejected_circumcenters;
-    return;
+    return false;
   }
   const Index w = add_vertex(s, p, VertexKind::Facet, facet);
   ++s.stats.num_rule2_insertions;
   insert_vertex(s, w, cz, cand, kUnknownRegion);
+  return true;
 }
 
 void process_subfacet(MeshState& s, const SubfacetEntry& e) {
@@ -458,7 +490,15 @@ void process_subfacet(MeshState& s, const SubfacetEntry& e) {
       if (strictly_encroaches(s.kpoint((*h)[0]), s.kpoint((*h)[1]), s.kpoint((*h)[2]), to_kpoint(q))) target = *h;
     }
   }
-  split_subfacet(s, e.facet, target);
+  if (split_subfacet(s, e.facet, target)) return;
+  // Rejected (Rule 2's second clause: the centre encroaches subsegments, now queued for Rule 1): the subfacet stays
+  // encroached or missing, and a missing one is a face of no cell, so no later conflict zone would find it again.
+  // Queue it behind those splits (Rule 1 runs first); stale or healed entries cost nothing when popped.
+  if (e.attempts < 16) {
+    SubfacetEntry again = e;
+    ++again.attempts;
+    s.subfacet_queue.push_back(again);
+  }
 }
 
 // --- Rule 3 -----------------------------------------------------------------------------------------------------
@@ -466,6 +506,22 @@ void process_subfacet(MeshState& s, const SubfacetEntry& e) {
 void give_up(MeshState& s, std::array<Index, 4> v) {
   std::sort(v.begin(), v.end());
   s.given_up.push_back(v);
+}
+
+// Queues c's faces that are subfacets for a forced Rule 2 split and c again (up to 8 times, then given up).
+void retry_through_subfacets(MeshState& s, Ch3 c, const TetEntry& e) {
+  bool any = false;
+  for (int i = 0; i < 4; ++i) {
+    const Index facet = face_subfacet(s, c, i);
+    if (facet == kNoIndex) continue;
+    std::array<Index, 3> f{c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(),
+                           c->vertex((i + 3) & 3)->info()};
+    s.subfacet_queue.push_back({facet, f, false, {}, true});
+    any = true;
+  }
+  ++s.stats.num_rejected_circumcenters;
+  if (any && e.attempts < 8) s.tet_queue.push_back({e.vertices, e.attempts + 1});
+  else give_up(s, e.vertices);
 }
 
 void process_tet(MeshState& s, const TetEntry& e) {
@@ -499,9 +555,16 @@ void process_tet(MeshState& s, const TetEntry& e) {
       return;
     }
   }
-  const KPoint3 z = CGAL::circumcenter(s.kpoint(v[0]), s.kpoint(v[1]), s.kpoint(v[2]), s.kpoint(v[3]));
+  KPoint3 z = CGAL::circumcenter(s.kpoint(v[0]), s.kpoint(v[1]), s.kpoint(v[2]), s.kpoint(v[3]));
+  if (auto zf = degenerate_cell_centre(s, v)) z = *zf;
   ConflictZone cz;
-  if (!find_conflict_zone(s, z, c, cz)) return;
+  if (!find_conflict_zone(s, z, c, cz) || std::find(cz.cells.begin(), cz.cells.end(), c) == cz.cells.end()) {
+    // Rounding put z on a vertex, or so far away (a nearly flat cell on two nearly coplanar facets of a curved
+    // CAD face) that the conflict zone found from z misses c: split c's subfacets instead (Rule 2; the empty
+    // circumsphere of a cell of the bounded domain can only be that large by crossing them).
+    retry_through_subfacets(s, c, e);
+    return;
+  }
   Candidates cand;
   collect_candidates(s, cz, cand);
   // Rule 3, first bullet: z encroaches subsegments -> Rule 1.
@@ -535,11 +598,14 @@ void process_tet(MeshState& s, const TetEntry& e) {
     // Without an encroached element the conflict zone cannot cross the boundary, so it lies in one region.
     for (const Ch3& cell : cz.cells) {
       if (cell->info().region != region) {
-        rejected = true;  // numerically inconsistent; leave this tetrahedron
+        rejected = true;  // numerically inconsistent (z encroaches nothing, yet the zone leaves the region)
         break;
       }
     }
-    if (rejected) return;
+    if (rejected) {
+      retry_through_subfacets(s, c, e);
+      return;
+    }
     const Index w = add_vertex(s, to_point3(z), VertexKind::Volume, kNoIndex);
     ++s.stats.num_rule3_insertions;
     insert_vertex(s, w, cz, cand, region);
@@ -566,6 +632,31 @@ void report(MeshState& s, double fraction) {
 }
 
 }  // namespace
+
+void remove_flat_boundary_cells(MeshState& s) {
+  std::vector<Ch3> flat;
+  for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) {
+    if (c->info().region < 0) continue;
+    std::array<Index, 4> v;
+    for (int k = 0; k < 4; ++k) v[k] = c->vertex(k)->info();
+    if (degenerate_cell_centre(s, v) && facet_under_flat_cell(s, c) != kNoIndex) flat.push_back(c);
+  }
+  for (const Ch3& c : flat) {
+    const Index under = facet_under_flat_cell(s, c);
+    for (int i = 0; i < 4; ++i) {
+      const Index facet = face_subfacet(s, c, i);
+      if (facet == kNoIndex || s.complex.plane_group[facet] != s.complex.plane_group[under]) continue;
+      const Ch3 n = c->neighbor(i);
+      if (n->info().region >= 0) continue;  // an internal facet: both sides are in the domain
+      const std::array<Index, 3> f{c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(),
+                                   c->vertex((i + 3) & 3)->info()};
+      if (flip_subfacet_to_match(s, facet, f, nullptr)) {
+        c->info().region = kOutsideRegion;
+        break;
+      }
+    }
+  }
+}
 
 void sort_given_up(MeshState& s) {
   std::sort(s.given_up.begin(), s.given_up.end());
@@ -640,6 +731,14 @@ void run_refinement(MeshState& s, bool with_rule3) {
       const double queued = double(s.subsegment_queue.size() + s.subfacet_queue.size() + s.tet_queue.size());
       const double done = double(s.stats.num_steiner_vertices);
       report(s, done / (done + queued + 1));
+      if (steps % (1u << 18) == 0)
+        s.log_line("refinement: " + std::to_string(steps) + " steps, " + std::to_string(s.tr.number_of_vertices()) +
+                   " vertices (rule 1 " + std::to_string(s.stats.num_rule1_insertions) + ", rule 2 " +
+                   std::to_string(s.stats.num_rule2_insertions) + ", rule 3 " +
+                   std::to_string(s.stats.num_rule3_insertions) + "), queued " +
+                   std::to_string(s.subsegment_queue.size()) + "/" + std::to_string(s.subfacet_queue.size()) + "/" +
+                   std::to_string(s.tet_queue.size()) + ", " + std::to_string(s.stats.num_rejected_circumcenters) +
+                   " centres rejected, " + std::to_string(s.stats.num_skipped_small_angle) + " small-angle skips");
     }
     if (!s.subsegment_queue.empty()) {
       const SubsegmentEntry e = s.subsegment_queue.front();

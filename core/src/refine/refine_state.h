@@ -64,6 +64,7 @@ struct SubfacetEntry {
   bool has_point = false;  // a rejected circumcentre encroaches it (Rule 3)
   Point3 point{};
   bool forced = false;  // split even when no vertex encroaches it (Rule 3 rejection)
+  int attempts = 0;     // times its split point was rejected (it is queued again behind Rule 1's splits)
 };
 
 struct TetEntry {
@@ -175,6 +176,10 @@ bool shortest_edge_forced_by_acute_angle(const MeshState& s, Index u, Index w);
 // given up after rejected circumcentres (MeshState::given_up; call sort_given_up() first), or other.
 enum class LeftReason { AcuteAngle, Rejected, Other };
 void sort_given_up(MeshState& s);
+// Degenerate cells (four nearly cocircular points whose rounded volume may be non-positive) lying on a facet's
+// plane, in the domain, with an outside cell across their subfacets: the facet's 2D triangulation takes the other
+// diagonal (both are Delaunay) and the cell leaves the domain, so no output tetrahedron is flat. Before extraction.
+void remove_flat_boundary_cells(MeshState& s);
 LeftReason why_left(MeshState& s, Ch3 c);
 
 // The input element hosting vertex v (refine_engine.cpp); *has is false for volume vertices.

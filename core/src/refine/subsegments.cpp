@@ -2,12 +2,14 @@
 // split point of Rule 1. Membership of a vertex in a segment or facet is symbolic (its host element), never decided
 // by a distance.
 //
-// Rule 1 inserts the midpoint of an encroached subsegment. When a subsegment ends at an input vertex that is the apex
-// of an acute input angle, the split point is instead the point at a power-of-two distance from the apex that lies
-// in the middle third of the subsegment (Shewchuk's concentric shells, "Mesh generation for domains with small
-// angles", 2000): vertices on the segments around the apex then lie on common spheres centred at the apex, so
-// subsegments on adjacent segments stop encroaching each other and refinement terminates although Lemma 3.3 (which
-// needs angles >= pi/2) does not hold there.
+// Rule 1 inserts the midpoint of an encroached subsegment. On a segment that ends at the apex of an acute input
+// angle, the split point is instead at a dyadic distance from the apex (a power of two when the subsegment ends at
+// the apex, else the coarsest k 2^j) in the middle third of the subsegment (Shewchuk's concentric shells, "Mesh
+// generation for domains with small angles", 2000): the vertices on all segments through the apex then lie on
+// common spheres centred at it, and the diametral ball of a subsegment between radii r1 < r2 lies in the shell
+// r1 <= |x - apex| <= r2, so subsegments of two segments through the apex never encroach each other, however small
+// their angle (a CAD tessellation's needle triangles meet at 0.005 degrees). Refinement then terminates although
+// Lemma 3.3 (which needs angles >= pi/2) does not hold there.
 #include <algorithm>
 #include <cmath>
 
@@ -99,19 +101,36 @@ double subsegment_split_parameter(const MeshState& s, Index segment, Index u, In
   auto param = [&](Index w) { return w == seg.a ? 0.0 : (w == seg.b ? 1.0 : s.vertices[w].t); };
   const double tu = param(u), tv = param(v);
   const double mid = 0.5 * (tu + tv);
-  const bool acute_u = s.vertices[u].kind == VertexKind::Input && s.complex.acute_vertex[u];
-  const bool acute_v = s.vertices[v].kind == VertexKind::Input && s.complex.acute_vertex[v];
-  if (acute_u == acute_v) return mid;  // neither end, or both ends (split at the midpoint first), are apices
-  // Concentric shells around the acute apex: distance 2^k from it, in the middle third of the subsegment.
+  const bool acute_a = s.complex.acute_vertex[seg.a] != 0, acute_b = s.complex.acute_vertex[seg.b] != 0;
+  if (!acute_a && !acute_b) return mid;
+  if (acute_a && acute_b && std::min(tu, tv) == 0.0 && std::max(tu, tv) == 1.0) return mid;  // halves first
+  // The apex that governs this subsegment: the acute end, or the nearer one when both are (the first split of such
+  // a segment is its midpoint, so no subsegment straddles it).
+  const bool from_a = acute_a && (!acute_b || mid < 0.5);
   const Point3& a = s.point(seg.a);
   const Point3& b = s.point(seg.b);
   const double seg_len = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
-  const double len = std::abs(tv - tu) * seg_len;
-  if (!(len > 0)) return mid;
-  const double d = std::exp2(std::floor(std::log2(len * (2.0 / 3.0))));  // in (len/3, 2len/3]
-  const double dt = d / seg_len;
-  if (acute_u) return tu + (tv > tu ? dt : -dt);
-  return tv + (tu > tv ? dt : -dt);
+  // Distances from the apex along the segment.
+  const double ru = (from_a ? tu : 1.0 - tu) * seg_len, rv = (from_a ? tv : 1.0 - tv) * seg_len;
+  const double lo = std::min(ru, rv), hi = std::max(ru, rv);
+  if (!(hi > lo)) return mid;
+  double r = 0;
+  if (lo == 0.0) {
+    r = std::exp2(std::floor(std::log2(hi * (2.0 / 3.0))));  // a power of two in (hi/3, 2hi/3]
+  } else {
+    // The coarsest dyadic radius k 2^j in the middle third [x1, x2]: segments through the apex then share their split
+    // radii even where their far ends differ, so nearly parallel segments stop encroaching each other.
+    const double x1 = lo + (hi - lo) / 3.0, x2 = lo + 2.0 * (hi - lo) / 3.0;
+    double h = std::exp2(std::ceil(std::log2(hi)));
+    for (int guard = 0; guard < 2100 && !(r > 0); ++guard, h *= 0.5) {
+      const double k = std::ceil(x1 / h);
+      if (k * h <= x2) r = k * h;
+    }
+    if (!(r > 0)) return mid;
+  }
+  const double t = from_a ? r / seg_len : 1.0 - r / seg_len;
+  if (!(t > std::min(tu, tv) && t < std::max(tu, tv))) return mid;
+  return t;
 }
 
 void link_segment_vertex(MeshState& s, Index segment, Index u, Index v, Index w) {
