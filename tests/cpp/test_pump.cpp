@@ -391,8 +391,7 @@ TEST(PumpReal, Fandisk) {
 // face after pumping. The triangulation was regular; the output lost the weight of its first vertex, which pumping
 // had weighted (extract.cpp assigned the weights array only from the next weighted vertex on). The properties of
 // expect_pumping_properties catch it twice: weighted Delaunay, and as many nonzero weights as pumped vertices.
-// Disabled until that two-line fix of extract.cpp (handed to its owner) is in; it passes with it.
-TEST(PumpReal, DISABLED_CouplingdownKeepTriangles) {
+TEST(PumpReal, CouplingdownKeepTriangles) {
   const std::string path = qualmesh::test::shared_path("data/plc/couplingdown.off");
   QM_REQUIRE_FILE(path);
   qualmesh::ReadOptions read_options;

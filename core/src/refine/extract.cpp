@@ -81,8 +81,10 @@ TetMesh extract_mesh(MeshState& s, std::vector<std::uint8_t>& touches_acute) {
     mesh.points.push_back(s.vertices[v].point);
     // Pumping (pump.cpp) leaves weights on the triangulation's vertices; all zero without it.
     const double w = s.vertices[v].handle->point().weight();
+    // The first nonzero weight fills zeros for the points before it, then every point gets its weight (the point
+    // itself included, also when it is the first one: weights is still empty after assigning it zero entries).
     if (w != 0 && mesh.weights.empty()) mesh.weights.assign(mesh.points.size() - 1, 0.0);
-    if (!mesh.weights.empty()) mesh.weights.push_back(w);
+    if (!mesh.weights.empty() || w != 0) mesh.weights.push_back(w);
   }
   for (Tet& t : tets)
     for (Index& v : t.v) v = new_id[v];
