@@ -642,19 +642,24 @@ void remove_flat_boundary_cells(MeshState& s) {
     if (degenerate_cell_centre(s, v) && facet_under_flat_cell(s, c) != kNoIndex) flat.push_back(c);
   }
   for (const Ch3& c : flat) {
-    const Index under = facet_under_flat_cell(s, c);
+    // Its two faces that are subfacets of one facet, with outside cells across them (the quadrilateral's two
+    // triangles); the 2D flip of their common edge makes the cell's other two faces the subfacets.
+    int on[4], n_on = 0;
+    Index facet = kNoIndex;
     for (int i = 0; i < 4; ++i) {
-      const Index facet = face_subfacet(s, c, i);
-      if (facet == kNoIndex || s.complex.plane_group[facet] != s.complex.plane_group[under]) continue;
-      const Ch3 n = c->neighbor(i);
-      if (n->info().region >= 0) continue;  // an internal facet: both sides are in the domain
-      const std::array<Index, 3> f{c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(),
-                                   c->vertex((i + 3) & 3)->info()};
-      if (flip_subfacet_to_match(s, facet, f, nullptr)) {
-        c->info().region = kOutsideRegion;
-        break;
-      }
+      const Index f = face_subfacet(s, c, i);
+      if (f == kNoIndex || c->neighbor(i)->info().region >= 0) continue;
+      if (facet != kNoIndex && f != facet) n_on = 3;  // two facets: leave it
+      facet = f;
+      if (n_on < 4) on[std::min(n_on, 3)] = i;
+      ++n_on;
     }
+    if (n_on != 2) continue;
+    const int i1 = on[0], i2 = on[1];
+    const std::array<Index, 3> face1{c->vertex((i1 + 1) & 3)->info(), c->vertex((i1 + 2) & 3)->info(),
+                                     c->vertex((i1 + 3) & 3)->info()};
+    if (flip_subfacet_to_match(s, facet, face1, nullptr, c->vertex(i2)->info()))
+      c->info().region = kOutsideRegion;
   }
 }
 

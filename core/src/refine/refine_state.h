@@ -154,8 +154,9 @@ std::optional<std::array<Index, 3>> subfacet_containing_projection(const MeshSta
 bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p, Index hint = kNoIndex);
 // Tries to flip 2D edges of subfacet (a, b, c) so that f's subfacets match the 3D triangulation's choice among
 // cocircular configurations; appends the new subfacets and returns true when it flipped.
+// `only_across_from`: flip only the edge of abc opposite that vertex (kNoIndex: any edge).
 bool flip_subfacet_to_match(MeshState& s, Index facet, const std::array<Index, 3>& abc,
-                            std::vector<std::array<Index, 3>>* new_faces);
+                            std::vector<std::array<Index, 3>>* new_faces, Index only_across_from = kNoIndex);
 // All in-domain subfacets of f.
 void collect_subfacets(const MeshState& s, Index facet, std::vector<std::array<Index, 3>>& out);
 

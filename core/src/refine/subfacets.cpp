@@ -236,7 +236,7 @@ bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p, Ind
 }
 
 bool flip_subfacet_to_match(MeshState& s, Index facet, const std::array<Index, 3>& abc,
-                            std::vector<std::array<Index, 3>>* new_faces) {
+                            std::vector<std::array<Index, 3>>* new_faces, Index only_across_from) {
   FacetMesh& fm = s.facets[facet];
   const Vh2 va = fm.find(abc[0]), vb = fm.find(abc[1]), vc = fm.find(abc[2]);
   Fh2 fh;
@@ -246,6 +246,7 @@ bool flip_subfacet_to_match(MeshState& s, Index facet, const std::array<Index, 3
     Fh2 g = fh->neighbor(i);
     if (fm.cdt.is_infinite(g) || !g->info().in_domain()) continue;
     const Vh2 c = fh->vertex(i), x = fh->vertex(Cdt2::ccw(i)), y = fh->vertex(Cdt2::cw(i));
+    if (only_across_from != kNoIndex && c->info() != only_across_from) continue;
     const Vh2 d = g->vertex(fm.cdt.mirror_index(fh, i));
     const Vh3 c3 = s.vertices[c->info()].handle, d3 = s.vertices[d->info()].handle;
     const Vh3 x3 = s.vertices[x->info()].handle, y3 = s.vertices[y->info()].handle;
