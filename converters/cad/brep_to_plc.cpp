@@ -43,9 +43,14 @@
 namespace qualmesh::cad {
 namespace {
 
-// Largest distance of a planar face's polygon vertices from their mean plane, relative to the model's diagonal, for
-// the face to become one polygonal facet (ten times below validate_plc's default planarity tolerance).
+// Height (relative to the model's diagonal) below which BRepMesh's flat triangles are removed (ten times below
+// validate_plc's default planarity tolerance).
 constexpr double kPlanarityTolerance = 1e-7;
+// Largest distance of a planar face's polygon vertices from their mean plane, relative to the model's diagonal, for
+// the face to become one polygonal facet: rounding only. The mesher keeps the 3D points of a facet where they are,
+// so a polygon whose vertices stray by more (Zylkopf.stp: 1e-8 of the diagonal, healed edges) gives boundary faces
+// off their facet; such a face uses its triangles instead, each planar by construction.
+constexpr double kPolygonPlanarityTolerance = 1e-11;
 
 Point3 to_point(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 
@@ -368,7 +373,7 @@ class PlcBuilder {
       for (Index v : loop) {
         const Point3& p = model_.plc.vertices[v];
         double h = (p[0] - origin[0]) * axis.X() + (p[1] - origin[1]) * axis.Y() + (p[2] - origin[2]) * axis.Z();
-        if (std::fabs(h - centre) > kPlanarityTolerance * diagonal_) return false;
+        if (std::fabs(h - centre) > kPolygonPlanarityTolerance * diagonal_) return false;
       }
     model_.plc.facets.push_back(std::move(facet));
     return true;

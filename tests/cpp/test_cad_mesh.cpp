@@ -106,7 +106,7 @@ TEST_P(CadMeshes, MeshMatchesCadModel) {
 INSTANTIATE_TEST_SUITE_P(SharedData, CadMeshes,
                          ::testing::Values("box_static.FCStd", "fcFEM_Stacked_Beam_Example.FCStd", "cube1000.igs",
                                            "red_cube_blue_cylinder.step", "part.step", "t20_data.step",
-                                           "wrenchnut.stp", "Kurbelwelle.stp"),
+                                           "wrenchnut.stp", "Kurbelwelle.stp", "Zylkopf.stp"),
                          [](const ::testing::TestParamInfo<const char*>& info) {
                            std::string name = info.param;
                            for (char& ch : name)
