@@ -367,14 +367,27 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
         report.covered_area += area;
       }
     }
+    // Rounding of the coordinates (magnitude D, the bounding box's diagonal) perturbs a facet's covered area by
+    // about 1e-16 D times its perimeter, whatever its area: a facet's error is taken relative to its area but at
+    // least 1e-6 D^2, so a CAD sliver face of 1e-8 D^2 is not failed for an absolute error of 1e-13 D^2 while a
+    // missing or doubled face of any size still is.
+    double diagonal2 = 0;
+    if (!plc.vertices.empty()) {
+      Point3 lo = plc.vertices.front(), hi = lo;
+      for (const Point3& p : plc.vertices)
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+      for (int k = 0; k < 3; ++k) diagonal2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    const double area_floor = 1e-6 * diagonal2;
     for (std::size_t f = 0; f < facets.size(); ++f) {
       FacetCoverage coverage;
       coverage.facet = static_cast<Index>(f);
       coverage.marker = plc.facets[f].marker;
       coverage.area = facets[f].degenerate ? 0 : facets[f].area;
       coverage.covered_area = covered[f];
-      coverage.relative_error = coverage.area > 0 ? std::fabs(covered[f] - coverage.area) / coverage.area
-                                                  : (covered[f] > 0 ? inf : 0);
+      coverage.relative_error = coverage.area > 0
+                                    ? std::fabs(covered[f] - coverage.area) / std::max(coverage.area, area_floor)
+                                    : (covered[f] > 0 ? inf : 0);
       report.facet_area += coverage.area;
       report.max_facet_area_relative_error = std::max(report.max_facet_area_relative_error, coverage.relative_error);
       if (!(coverage.relative_error <= options.relative_area_tolerance)) {

@@ -45,7 +45,7 @@ struct FacetCoverage {
   int marker = 0;             // Facet::marker
   double area = 0;            // area of the facet (polygons by the even-odd rule, less its holes)
   double covered_area = 0;    // total area of the mesh boundary faces found on it
-  double relative_error = 0;  // |covered_area - area| / area
+  double relative_error = 0;  // |covered_area - area| / max(area, 1e-6 diagonal^2), see mesh_check.cpp
 };
 
 struct CheckReport {

@@ -358,15 +358,10 @@ InputComplex build_input_complex(const Plc& plc) {
       for (std::size_t j = i + 1; j < segs.size() && !acute; ++j)
         if (angle_deg(direction(segs[i]), direction(segs[j])) < kAcuteDeg) acute = true;
     for (std::size_t i = 0; i < segs.size() && !acute; ++i) {
-      const Point3 d = direction(segs[i]);
       for (Index f : c.vertex_facets[v]) {
         if (acute || c.facet_has_segment(f, segs[i])) continue;
         // Angle between the segment and the facet at v: its elevation over the plane when it projects into the
-        // facet's (convex) corner at v, else the angle to the nearer corner edge.
-        const Point3& n = c.frames[f].normal;
-        const double h = dot(d, n);
-        const Point3 proj{d[0] - h * n[0], d[1] - h * n[1], d[2] - h * n[2]};
-        (void)proj;
+        // facet's corner at v (convex or not), else the angle to the nearer corner edge.
         if (c.segment_facet_angle_deg(v, segs[i], f) < kAcuteDeg) acute = true;
       }
     }

@@ -21,8 +21,9 @@
 //
 // Acute input angles (beyond the paper, which assumes none): concentric shells for Rule 1 (subsegments.cpp), and
 // Rule 3 does not split a tetrahedron whose shortest edge joins vertices on two input elements that meet at an
-// acute apex (that edge is forced by the small angle; splitting it would cascade). MeshOptions::max_vertices is
-// the last-resort stop.
+// acute apex (that edge is forced by the small angle; splitting it would cascade), unless the tetrahedron is
+// degenerate (four nearly cocircular points, which shells make: degenerate_cell_centre). MeshOptions::max_vertices
+// is the last-resort stop.
 #include <algorithm>
 #include <cmath>
 #include <optional>
