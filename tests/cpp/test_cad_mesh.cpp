@@ -1,5 +1,5 @@
-// End-to-end tests of CAD models through the mesher (read_cad -> mesh_plc), on the models of shared/data/cad that
-// the engine meshes in seconds:
+// End-to-end tests of CAD models through the mesher (read_cad -> mesh_plc), on every model of shared/data/cad that
+// is not refused (model1.igs stays open after sewing: test_cad.cpp); the acute ones without pumping (CadMeshesNoPump):
 //  - every region's mesh volume equals OpenCASCADE's volume of its solid within the tessellation bound
 //    (sum over the solid's faces of area x (deflection + face tolerance));
 //  - every boundary node lies on its CAD face (OpenCASCADE's distance) within the face's tolerance + deflection;
