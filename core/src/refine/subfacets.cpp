@@ -189,29 +189,14 @@ Index subfacet_of(const MeshState& s, Index a, Index b, Index c) {
 void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::array<Index, 3>>* new_faces) {
   FacetMesh& fm = s.facets[facet];
   const VertexRecord& r = s.vertices[w];
-  KPoint2 p = local_point(s, facet, r.point);
+  const KPoint2 p = local_point(s, facet, r.point);
   Vh2 vh;
   if (r.kind == VertexKind::Segment) {
-    // Symbolically on the constrained edge between its chain neighbours: split that edge. Its 2D point is taken on
-    // the 2D edge (same parameter between the two neighbours), not projected from 3D: next to the needle triangles
-    // of a tessellated cone the projection's rounding can leave the edge's two triangles, and splitting the edge
-    // there would fold the triangulation.
+    // Symbolically on the constrained edge between its chain neighbours: split that edge.
     const Vh2 a = fm.find(r.prev), b = fm.find(r.next);
     Fh2 fh;
     int i = 0;
-    if (a != Vh2() && b != Vh2()) {
-      const Segment& sg = s.complex.segments[r.host];
-      auto param = [&](Index v) { return v == sg.a ? 0.0 : (v == sg.b ? 1.0 : s.vertices[v].t); };
-      const double ta = param(r.prev), tb = param(r.next);
-      if (tb != ta) {
-        const double u = (r.t - ta) / (tb - ta);
-        const KPoint2 pa = a->point(), pb = b->point();
-        p = KPoint2(pa.x() + u * (pb.x() - pa.x()), pa.y() + u * (pb.y() - pa.y()));
-      }
-    }
-    if (a != Vh2() && b != Vh2() && fm.cdt.is_edge(a, b, fh, i)) {
-      vh = fm.cdt.insert(p, Cdt2::EDGE, fh, i);
-    }
+    if (a != Vh2() && b != Vh2() && fm.cdt.is_edge(a, b, fh, i)) vh = fm.cdt.insert(p, Cdt2::EDGE, fh, i);
   }
   if (vh == Vh2()) {
     Fh2 hint;
