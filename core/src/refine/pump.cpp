@@ -46,6 +46,12 @@ namespace qualmesh::detail {
 
 namespace {
 
+// The cell on vertices `ids`, if the triangulation still has it.
+bool current_cell(const MeshState& s, const std::array<Index, 4>& ids, Ch3& c) {
+  return s.tr.is_cell(s.vertices[ids[0]].handle, s.vertices[ids[1]].handle, s.vertices[ids[2]].handle,
+                      s.vertices[ids[3]].handle, c);
+}
+
 const Kernel& kernel() {
   static const Kernel k;
   return k;
@@ -742,9 +748,7 @@ void pump_slivers(MeshState& s) {
     for (const Bad& b : bad) {
       Ch3 c;
       const auto& ids = b.ids;
-      if (!s.tr.is_cell(s.vertices[ids[0]].handle, s.vertices[ids[1]].handle, s.vertices[ids[2]].handle,
-                        s.vertices[ids[3]].handle, c))
-        continue;  // already gone
+      if (!current_cell(s, ids, c)) continue;  // already gone
       // The best of its four vertices.
       Index best_v = kNoIndex;
       PumpChoice best;
@@ -785,9 +789,7 @@ void pump_slivers(MeshState& s) {
     for (const Bad& b : bad) {
       Ch3 c;
       const auto& ids = b.ids;
-      if (!s.tr.is_cell(s.vertices[ids[0]].handle, s.vertices[ids[1]].handle, s.vertices[ids[2]].handle,
-                        s.vertices[ids[3]].handle, c))
-        continue;  // already gone
+      if (!current_cell(s, ids, c)) continue;  // already gone
       if (tet_touches_acute_angle(s, ids)) continue;
       Index best_v = kNoIndex;
       PumpChoice best;
