@@ -21,6 +21,9 @@ tetrahedron of QualMesh's mean tetrahedron volume, and is rescaled by (vertices 
 QualMesh without pumping: `qualmesh mesh --no-pump` when `qualmesh mesh --help` lists that flag; until then the
 build has no pumping and the plain `qualmesh mesh` row is all there is (the table says so).
 
+QualMesh pumping alone: `qualmesh mesh --no-sliver-insertion` (no points inserted at the slivers pumping leaves) when
+the flag exists.
+
 Columns: vertices and tets as the checker counts them, wall time of the mesher (best of --repeat; CGAL: the last
 sizing run, in a fresh python3), min dihedral angle, tets with min dihedral under 5/10/15 deg, QualMesh's own count of
 tets under its sliver angle (15 deg) that touch no acute input angle (issue 4's target is none; n/a for peers, which
@@ -206,11 +209,13 @@ def main():
                 continue
             print(f"{name} ...", file=sys.stderr, flush=True)
             variants = [("qualmesh --no-pump", ["--no-pump"])] if no_pump else []
+            if has_flag(args.qualmesh, "--no-sliver-insertion"):
+                variants.append(("qualmesh --no-sliver-insertion", ["--no-sliver-insertion"]))
             variants.append(("qualmesh", []))
             default_report = None
             default_vtu = None
             for tool, extra in variants:
-                vtu = Path(tmp) / (poly.stem + ("_qm_nopump.vtu" if extra else "_qm.vtu"))
+                vtu = Path(tmp) / (poly.stem + "_qm" + "".join(e.replace("-", "_") for e in extra) + ".vtu")
                 best, proc = math.inf, None
                 for _ in range(args.repeat):
                     dt, proc = run([args.qualmesh, "mesh", str(poly), "-o", str(vtu)] + extra, args.timeout, tmp)

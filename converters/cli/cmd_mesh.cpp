@@ -1,6 +1,7 @@
 // `qualmesh mesh IN -o OUT [--radius-edge 2.0] [--max-edge L] [--max-volume V] [--sliver-angle 15] [--omega 0.5]
-// [--delta 0.45] [--no-pump]`: weighted Delaunay refinement of the input PLC (Cheng & Dey, QUALMESH: Rules 1-4,
-// then pumping; --no-pump stops after Rules 1-3), written to OUT in the format its extension names. A progress bar
+// [--delta 0.45] [--no-pump] [--no-sliver-insertion]`: weighted Delaunay refinement of the input PLC (Cheng & Dey,
+// QUALMESH: Rules 1-4, then pumping, then points at the slivers pumping left; --no-pump stops after Rules 1-3,
+// --no-sliver-insertion after pumping), written to OUT in the format its extension names. A progress bar
 // on stderr when stderr is a terminal (silent otherwise), then a short summary on stdout: counts, quality figures
 // and time per stage. Exit 2 for bad input or usage; nothing is written then.
 #include <unistd.h>
@@ -26,10 +27,12 @@ struct MeshArgs {
   MeshOptions options;
   bool verbose = false;
   bool no_pump = false;
+  bool no_sliver_insertion = false;
 };
 
 int run_mesh(MeshArgs& args) {
   if (args.no_pump) args.options.pump = false;
+  if (args.no_sliver_insertion) args.options.sliver_insertion = false;
   const Plc plc = load_input(args.input, args.input_options);
   const bool tty = isatty(fileno(stderr)) != 0;
   ProgressCallback progress;
@@ -70,6 +73,11 @@ int run_mesh(MeshArgs& args) {
     std::printf("pumping:     slivers (min dihedral < %.4g deg) %zu before, %zu after; min dihedral %.4g -> %.4g deg\n",
                 args.options.sliver_angle_deg, st.num_slivers_before_pumping, st.num_slivers_after_pumping,
                 st.min_dihedral_before_pumping_deg, st.min_dihedral_deg);
+    if (args.options.sliver_insertion)
+      std::printf("insertion:   %zu points at slivers left by pumping (%zu vertices before pumping, %zu after it); "
+                  "%zu slivers without an acceptable point\n",
+                  st.num_sliver_insertions, st.num_vertices_before_pumping, st.num_vertices_after_pumping,
+                  st.num_sliver_insertions_refused);
     std::printf("weights:     %zu vertices pumped (%zu moves, %zu refused); max weight %.4g, max weight/cap %.4g\n",
                 st.num_vertices_pumped, st.num_pump_moves, st.num_pump_rejected, st.max_weight,
                 st.max_weight_cap_ratio);
@@ -104,6 +112,8 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
                       "Pumping caps weights at delta^2 N(v)^2, N: nearest-vertex distance; below 0.5 (default 0.45)");
   command->add_flag("--no-pump", args->no_pump,
                     "Plain Delaunay refinement: no Rule 4, no pumping (all weights zero)");
+  command->add_flag("--no-sliver-insertion", args->no_sliver_insertion,
+                    "Pumping alone: no points inserted at the slivers it leaves");
   command->add_flag("-v,--verbose", args->verbose, "Log the stages on stderr");
   command->callback([args, &exit_code] { exit_code = run_mesh(*args); });
 }

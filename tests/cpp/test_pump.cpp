@@ -1,7 +1,7 @@
 // Tests of Rule 4 and pumping (issue 4; Cheng & Dey Section 3.7 step 3, Theorems 7.2 and 7.3), each run against
 // plain Delaunay refinement (MeshOptions::pump = false) on the same input. Properties asserted:
 //   - pumping adds and removes no vertex (triangulation counts before and after it; the same point set as the
-//     plain run when Rule 4 added nothing);
+//     plain run when Rule 4 and sliver insertion added nothing);
 //   - it never lowers the minimum dihedral angle (against the mesh it started from, and against the plain run when
 //     Rule 4 added nothing);
 //   - the output is weighted Delaunay: across every interior face the opposite vertex is no closer than orthogonal
@@ -9,7 +9,9 @@
 //   - it conforms: volume and every facet's area agree with the input to 1e-9, no boundary face off the input;
 //   - every weight lies within its caps omega0^2 f(v)^2 (f exact, LocalFeatureSize) and delta^2 N(v)^2;
 //   - the vertex count is within 1.05x of plain refinement;
-//   - the same input gives the same mesh and weights, also in one process after meshing another input.
+//   - the same input gives the same mesh and weights, also in one process after meshing another input;
+//   - sliver insertion (after pumping) leaves fewer tets below the sliver angle away from acute input angles than
+//     pumping alone, never a smaller minimum dihedral angle, within the vertex budget.
 #include <gtest/gtest.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -166,10 +168,10 @@ void expect_pumping_properties(const Plc& plc, const std::string& name, qualmesh
   const auto& st = pumped.stats;
   const auto& m = pumped.mesh;
 
-  // No vertex added or removed by pumping.
+  // No vertex added or removed by pumping; sliver insertion adds its points after it.
   EXPECT_EQ(st.num_vertices_before_pumping, st.num_vertices_after_pumping) << name;
-  EXPECT_EQ(m.points.size(), st.num_vertices_after_pumping) << name;
-  if (st.num_rule4_vertices == 0) {
+  EXPECT_EQ(m.points.size(), st.num_vertices_after_pumping + st.num_sliver_insertions) << name;
+  if (st.num_rule4_vertices == 0 && st.num_sliver_insertions == 0) {
     auto sorted = [](std::vector<Point3> p) {
       std::sort(p.begin(), p.end());
       return p;
@@ -373,6 +375,45 @@ std::size_t num_slivers_away_from_acute(const qualmesh::MeshResult& r, double sl
     n += qualmesh::tet_min_dihedral_deg(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) < sliver_angle_deg;
   }
   return n;
+}
+
+// Sliver insertion (sliver_insertion.cpp) against pumping alone on the same input: it runs after the same pumping
+// (deterministic), so its mesh can only be better: fewer tets below the sliver angle away from acute input angles
+// (it inserted points, and each insertion lowered the count in its neighbourhood), a minimum dihedral angle no
+// smaller, and the vertex count within 1.05x of plain refinement; the properties of expect_pumping_properties
+// (weighted Delaunay, conforming, weights within caps) hold with it.
+void expect_insertion_helps(const Plc& plc, const std::string& name, qualmesh::MeshOptions options) {
+  qualmesh::MeshResult plain, with;
+  expect_pumping_properties(plc, name, options, &plain, &with);
+  options.pump = true;
+  options.sliver_insertion = false;
+  const qualmesh::MeshResult alone = qualmesh::mesh_plc(plc, options);
+  ASSERT_EQ(alone.status, qualmesh::MeshStatus::Ok);
+  const double angle = options.sliver_angle_deg;
+  EXPECT_EQ(alone.stats.num_sliver_insertions, 0u) << name;
+  EXPECT_GT(with.stats.num_sliver_insertions, 0u) << name;
+  EXPECT_LT(num_slivers_away_from_acute(with, angle), num_slivers_away_from_acute(alone, angle)) << name;
+  EXPECT_EQ(with.stats.num_tets_below_sliver_angle_away_from_acute, num_slivers_away_from_acute(with, angle)) << name;
+  EXPECT_GE(min_dihedral(with.mesh), min_dihedral(alone.mesh) - 1e-9) << name;
+  EXPECT_EQ(with.mesh.points.size(), alone.mesh.points.size() + with.stats.num_sliver_insertions) << name;
+  EXPECT_LE(double(with.mesh.points.size()), 1.05 * double(plain.mesh.points.size())) << name;
+}
+
+TEST(SliverInsertion, SizeFieldBox) {
+  PlcBuilder b;
+  b.box({0, 0, 0}, {1, 1, 1});
+  qualmesh::MeshOptions options;
+  options.max_edge_length = 0.15;
+  expect_insertion_helps(b.plc, "box", options);
+}
+
+TEST(SliverInsertion, StackedBoxesWithRegions) {
+  PlcBuilder b;
+  b.box({0, 0, 0}, {2, 1, 1});
+  b.box({0, 0, 1}, {2, 1, 1.6});
+  b.plc.regions.push_back({{1, 0.5, 0.5}, 1, 0});
+  b.plc.regions.push_back({{1, 0.5, 1.3}, 2, 0.002});
+  expect_insertion_helps(b.plc, "stacked", {});
 }
 
 // Fandisk: besides the properties of expect_pumping_properties, pumping retiles facets (Section 7.2: pumping a facet

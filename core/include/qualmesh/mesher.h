@@ -47,6 +47,10 @@ struct MeshOptions {
   // Pumping also keeps each weight at most delta^2 N(v)^2 (N(v): distance from v to its nearest vertex);
   // delta < 1/2 keeps the weighted balls disjoint, so no vertex is ever hidden. Dimensionless, in (0, 0.5).
   double delta = 0.45;
+  // After pumping (beyond the paper): a point near the orthocentre of each sliver pumping left away from acute input
+  // angles, when one keeps the boundary, rho0 and the weight caps and improves its neighbourhood; the new stars are
+  // pumped again. Adds at most 4.8% of plain refinement's vertex count. false: pumping alone (for comparison).
+  bool sliver_insertion = true;
 };
 
 enum class MeshStage { Initial, Boundary, Refinement, Regions, Pumping, Extraction };
@@ -65,7 +69,7 @@ using LogCallback = std::function<void(const std::string&)>;         // may be e
 
 struct MeshStats {
   std::size_t num_input_vertices = 0;
-  std::size_t num_steiner_vertices = 0;       // vertices added by Rules 1-3 (all of them, inside or not)
+  std::size_t num_steiner_vertices = 0;       // vertices added by Rules 1-3 and sliver insertion
   std::size_t num_rule1_insertions = 0;       // subsegment splits (midpoints or concentric-shell points)
   std::size_t num_rule2_insertions = 0;       // subfacet circumcentres
   std::size_t num_rule3_insertions = 0;       // tetrahedron circumcentres
@@ -91,6 +95,8 @@ struct MeshStats {
   std::size_t num_rule4_vertices = 0;         // vertices inserted (Rules 1-3) while draining those
   std::size_t num_vertices_before_pumping = 0; // triangulation vertices when pumping starts (after Rule 4)
   std::size_t num_vertices_after_pumping = 0;  // and when it ends: pumping adds and removes none
+  std::size_t num_sliver_insertions = 0;        // points inserted at slivers after pumping (MeshOptions::sliver_insertion)
+  std::size_t num_sliver_insertions_refused = 0; // slivers of the last insertion round with no acceptable point
   std::size_t num_slivers_before_pumping = 0; // in-domain slivers after refinement (Rules 1-4)
   std::size_t num_slivers_after_pumping = 0;  // in-domain slivers in the output
   std::size_t num_vertices_pumped = 0;        // vertices whose weight ended nonzero
@@ -108,7 +114,7 @@ struct MeshStats {
   double seconds_boundary = 0;
   double seconds_regions = 0;
   double seconds_refinement = 0;
-  double seconds_pumping = 0;  // Rule 4 rounds and pumping
+  double seconds_pumping = 0;  // Rule 4 rounds, pumping and sliver insertion
   double seconds_extraction = 0;
 };
 

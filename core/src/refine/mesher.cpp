@@ -4,8 +4,9 @@
 //   Boundary    Rules 1 and 2 until no subsegment or subfacet is encroached or missing (the boundary conforms);
 //   Regions     flood fill of the domain's regions (regions.cpp);
 //   Refinement  Rules 1-3 in priority order (refine_engine.cpp);
-//   Pumping     Rule 4 rounds (rule4.cpp), then step 3, pumping the vertices of slivers (pump.cpp); skipped with
-//               MeshOptions::pump = false;
+//   Pumping     Rule 4 rounds (rule4.cpp), then step 3, pumping the vertices of slivers (pump.cpp), then points
+//               at the slivers pumping left away from acute input angles (sliver_insertion.cpp, unless
+//               MeshOptions::sliver_insertion is false); all skipped with MeshOptions::pump = false;
 //   Extraction  the TetMesh and its quality figures (extract.cpp).
 #include "qualmesh/mesher.h"
 
@@ -93,7 +94,11 @@ MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCa
       t = Clock::now();
       begin_stage(s, MeshStage::Pumping);
       detail::apply_rule4(s);
-      if (!s.vertex_limit_reached) detail::pump_slivers(s);
+      if (!s.vertex_limit_reached) {
+        detail::pump_slivers(s);
+        if (options.sliver_insertion) detail::insert_at_slivers(s);
+        detail::pumping_statistics(s);
+      }
       s.stats.seconds_pumping = seconds_since(t);
     }
   } else {

@@ -372,10 +372,6 @@ struct PumpChoice {
   bool improves = false;
 };
 
-struct PumpContext {
-  std::vector<double> sq_nearest;  // N(v)^2 per vertex, measured before pumping
-};
-
 // The score of cells a move destroys (in-domain ones): their smallest dihedral angle and sliver deficit.
 void add_destroyed_cell(const MeshState& s, Ch3 c, StarScore* score) {
   if (s.tr.is_infinite(c) || c->info().region < 0) return;
@@ -390,12 +386,12 @@ void add_destroyed_cell(const MeshState& s, Ch3 c, StarScore* score) {
 // sliver, after its own vertices failed). Then a star is acceptable when the sliver is in the zone and the new star
 // beats every cell it destroys (the zone, not only v's old star: the sliver is not in v's star), so the mesh's
 // smallest dihedral angle still cannot drop.
-PumpChoice best_weight(MeshState& s, const PumpContext& ctx, Index v, const Ch3* target = nullptr) {
+PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
   PumpChoice choice;
   const Vh3 vh = s.vertices[v].handle;
   const double w0 = vh->point().weight();
   const double f = local_feature_size_at(s, v);
-  double cap = s.options.delta * s.options.delta * ctx.sq_nearest[v];
+  double cap = s.options.delta * s.options.delta * s.sq_nearest[v];
   if (std::isfinite(f) && s.options.omega * s.options.omega * f * f < cap) {
     cap = s.options.omega * s.options.omega * f * f;
     choice.end = WalkEnd::CapOmega;
@@ -698,13 +694,12 @@ void log_survivors(const MeshState& s, const std::vector<Bad>& bad, const std::v
 
 void pump_slivers(MeshState& s) {
   s.stats.num_vertices_before_pumping = s.tr.number_of_vertices();
-  PumpContext ctx;
-  ctx.sq_nearest.assign(s.vertices.size(), std::numeric_limits<double>::infinity());
+  s.sq_nearest.assign(s.vertices.size(), std::numeric_limits<double>::infinity());
   for (auto e = s.tr.finite_edges_begin(); e != s.tr.finite_edges_end(); ++e) {
     const Index a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
     const double d = CGAL::squared_distance(s.kpoint(a), s.kpoint(b));
-    ctx.sq_nearest[a] = std::min(ctx.sq_nearest[a], d);
-    ctx.sq_nearest[b] = std::min(ctx.sq_nearest[b], d);
+    s.sq_nearest[a] = std::min(s.sq_nearest[a], d);
+    s.sq_nearest[b] = std::min(s.sq_nearest[b], d);
   }
   struct Bad {
     double angle;
@@ -754,7 +749,7 @@ void pump_slivers(MeshState& s) {
       PumpChoice best;
       for (const Index v : ids) {
         if (!dirty[v]) continue;
-        const PumpChoice choice = best_weight(s, ctx, v);
+        const PumpChoice choice = best_weight(s, v);
         last_end[v] = std::uint8_t(choice.end);
         last_refusal[v] = std::uint8_t(choice.refusal);
         if (choice.improves) last_end[v] = kImproved;
@@ -798,7 +793,7 @@ void pump_slivers(MeshState& s) {
         if (s.tr.is_infinite(n)) continue;
         const Index u = n->vertex(n->index(c))->info();
         if (u == kNoIndex) continue;
-        const PumpChoice choice = best_weight(s, ctx, u, &c);
+        const PumpChoice choice = best_weight(s, u, &c);
         if (choice.improves && (best_v == kNoIndex || better(choice.best, best.best))) best = choice, best_v = u;
       }
       if (best_v == kNoIndex) continue;
@@ -817,14 +812,74 @@ void pump_slivers(MeshState& s) {
     collect();
   }
 
-  // Statistics.
   s.stats.num_vertices_after_pumping = s.tr.number_of_vertices();
-  s.stats.num_slivers_after_pumping = collect().first;
   s.log_line("pumping: " + std::to_string(num_neighbour_moves) + " moves of sliver neighbours, " +
              std::to_string(num_retiled) + " moves changed subfacets" +
              (num_retile_failures ? ", " + std::to_string(num_retile_failures) + " facet triangulations not retiled (bug)"
                                   : std::string()));
+  collect();
   log_survivors(s, bad, last_end, last_refusal, kImproved, kNotTried);
+}
+
+std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices) {
+  // The bad cells (below the sliver angle, in the domain) among the stars of `vertices`, worst first.
+  struct Bad {
+    double angle;
+    std::array<Index, 4> ids;
+  };
+  std::vector<Bad> bad;
+  auto collect = [&]() {
+    std::vector<Ch3> cells;
+    for (const Index v : vertices) s.tr.incident_cells(s.vertices[v].handle, std::back_inserter(cells));
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    bad.clear();
+    for (const Ch3& c : cells) {
+      if (s.tr.is_infinite(c) || c->info().region < 0) continue;
+      std::array<Index, 4> ids{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
+      const double angle = tet_min_dihedral_deg(s.point(ids[0]), s.point(ids[1]), s.point(ids[2]), s.point(ids[3]));
+      if (angle < s.options.sliver_angle_deg) bad.push_back({angle, ids});
+    }
+    std::sort(bad.begin(), bad.end(), [](const Bad& a, const Bad& b) {
+      return a.angle < b.angle || (a.angle == b.angle && a.ids < b.ids);
+    });
+  };
+  std::size_t moves = 0, num_retiled = 0, num_retile_failures = 0;
+  std::vector<Index> touched;
+  constexpr int kMaxPasses = 2;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    collect();
+    std::size_t pass_moves = 0;
+    for (const Bad& b : bad) {
+      Ch3 c;
+      if (!current_cell(s, b.ids, c)) continue;
+      Index best_v = kNoIndex;
+      PumpChoice best;
+      for (const Index v : b.ids) {
+        const PumpChoice choice = best_weight(s, v);
+        if (choice.improves && (best_v == kNoIndex || better(choice.best, best.best))) best = choice, best_v = v;
+      }
+      if (best_v == kNoIndex) continue;
+      touched.clear();
+      if (apply_weight(s, best_v, best.weight, best.current, &touched, &num_retiled, &num_retile_failures)) {
+        ++pass_moves;
+        ++s.stats.num_pump_moves;
+      } else {
+        ++s.stats.num_pump_rejected;
+      }
+    }
+    moves += pass_moves;
+    if (pass_moves == 0) break;
+  }
+  if (num_retile_failures)
+    s.log_line("pumping: " + std::to_string(num_retile_failures) + " facet triangulations not retiled (bug)");
+  return moves;
+}
+
+void pumping_statistics(MeshState& s) {
+  std::size_t slivers = 0;
+  for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) slivers += is_sliver(s, c, nullptr);
+  s.stats.num_slivers_after_pumping = slivers;
   for (Index v = 0; v < s.vertices.size(); ++v) {
     if (s.vertices[v].handle == Vh3()) continue;
     const double w = s.vertices[v].handle->point().weight();
@@ -832,7 +887,7 @@ void pump_slivers(MeshState& s) {
     ++s.stats.num_vertices_pumped;
     s.stats.max_weight = std::max(s.stats.max_weight, w);
     const double f = local_feature_size_at(s, v);
-    double cap = s.options.delta * s.options.delta * ctx.sq_nearest[v];
+    double cap = s.options.delta * s.options.delta * s.sq_nearest[v];
     if (std::isfinite(f)) cap = std::min(cap, s.options.omega * s.options.omega * f * f);
     s.stats.max_weight_cap_ratio = std::max(s.stats.max_weight_cap_ratio, w / cap);
   }

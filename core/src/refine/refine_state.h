@@ -104,6 +104,9 @@ struct MeshState {
   // value per vertex (negative: not computed yet).
   std::unique_ptr<LocalFeatureSize> lfs;
   std::vector<double> lfs_at;
+  // Pumping's cap delta^2 N(v)^2: N(v)^2 per vertex, measured when step 3 starts (pump_slivers) and lowered when
+  // sliver insertion adds a vertex next to v.
+  std::vector<double> sq_nearest;
 
   MeshStats stats;
   ProgressCallback progress;
@@ -123,6 +126,9 @@ struct MeshState {
 bool vertex_on_segment(const MeshState& s, Index v, Index segment);
 // Is vertex v on facet f (symbolically)?
 bool vertex_on_facet(const MeshState& s, Index v, Index facet);
+// Whether vertex w of `facet` lies strictly inside the circumcircle of subfacet abc in the facet's 2D triangulation
+// (true when one of them is not in it yet).
+bool encroaches_in_facet_plane(const MeshState& s, Index facet, const std::array<Index, 3>& abc, Index w);
 // Is vertex v on a facet of plane group `group` (InputComplex::plane_group), symbolically?
 bool vertex_on_plane(const MeshState& s, Index v, Index group);
 // The vertex after / before v along segment `segment` (v must be on it), kNoIndex at the end.
@@ -166,6 +172,12 @@ void enqueue_initial_boundary(MeshState& s);
 // Drains Rules 1-2 (stage Boundary) or Rules 1-3 (stage Refinement).
 void run_refinement(MeshState& s, bool with_rule3);
 void enqueue_all_tets(MeshState& s);
+// Inserts a volume vertex at p (weight zero) into the hole `cells` (p's conflict zone, CGAL find_conflicts, with
+// its boundary facets `boundary`; both are consumed) with the engine's bookkeeping: vertex record, statistics,
+// regions (`region`: the zone's), and the Rule 1-3 queues for whatever p encroaches or makes bad (a caller that
+// checked p encroaches nothing and makes no bad cell leaves them empty). Returns the new vertex id.
+Index insert_volume_vertex(MeshState& s, const Point3& p, std::vector<Ch3>& cells, std::vector<Facet3>& boundary,
+                           int region);
 // Which facet (if any) the triangulation face (c, i) is a subfacet of.
 Index face_subfacet(const MeshState& s, Ch3 c, int i);
 
@@ -196,7 +208,16 @@ bool is_sliver(const MeshState& s, Ch3 c, double* min_dihedral_deg);
 // run_refinement(); ends when a round finds nothing or the vertex budget of Rule 4 is spent.
 void apply_rule4(MeshState& s);
 // Step 3: pumps the vertices of slivers, worst sliver first, keeping the triangulation regular and conforming.
+// Measures MeshState::sq_nearest first.
 void pump_slivers(MeshState& s);
+// Pumps again, worst first, the vertices of the cells below the sliver angle among the stars of `vertices` (after
+// an insertion: the new vertex's star), with step 3's caps and checks; a few passes. Returns the moves accepted.
+std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices);
+// After pumping and sliver insertion: slivers left, vertices pumped, weight statistics (MeshStats).
+void pumping_statistics(MeshState& s);
+// After step 3 (sliver_insertion.cpp, beyond the paper): inserts points at the slivers that pumping left away from
+// acute input angles, worst first, within a vertex budget, then pumps the new stars again.
+void insert_at_slivers(MeshState& s);
 
 // --- regions (regions.cpp) ---
 void compute_regions(MeshState& s);

@@ -186,17 +186,52 @@ Index subfacet_of(const MeshState& s, Index a, Index b, Index c) {
   return kNoIndex;
 }
 
+namespace {
+
+// Whether inserting p on edge (fh, i) leaves every new triangle counterclockwise: p strictly inside the union of the
+// edge's two triangles (an infinite side imposes nothing).
+bool splits_edge_without_fold(const Cdt2& cdt, Fh2 fh, int i, const KPoint2& p) {
+  const Fh2 g = fh->neighbor(i);
+  const int j = cdt.mirror_index(fh, i);
+  const std::array<std::pair<Fh2, int>, 2> sides = {{{fh, i}, {g, j}}};
+  for (const auto& [f, k] : sides) {
+    if (cdt.is_infinite(f)) continue;
+    const KPoint2 &c = f->vertex(k)->point(), &x = f->vertex(Cdt2::ccw(k))->point(),
+                  &y = f->vertex(Cdt2::cw(k))->point();
+    if (CGAL::orientation(c, x, p) != CGAL::LEFT_TURN || CGAL::orientation(c, p, y) != CGAL::LEFT_TURN) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::array<Index, 3>>* new_faces) {
   FacetMesh& fm = s.facets[facet];
   const VertexRecord& r = s.vertices[w];
-  const KPoint2 p = local_point(s, facet, r.point);
+  KPoint2 p = local_point(s, facet, r.point);
   Vh2 vh;
   if (r.kind == VertexKind::Segment) {
     // Symbolically on the constrained edge between its chain neighbours: split that edge.
     const Vh2 a = fm.find(r.prev), b = fm.find(r.next);
     Fh2 fh;
     int i = 0;
-    if (a != Vh2() && b != Vh2() && fm.cdt.is_edge(a, b, fh, i)) vh = fm.cdt.insert(p, Cdt2::EDGE, fh, i);
+    if (a != Vh2() && b != Vh2() && fm.cdt.is_edge(a, b, fh, i)) {
+      // The point projected from 3D normally lies in the edge's two triangles. Next to a needle triangle rounding
+      // can put it outside, and splitting the edge there folds the triangulation; then take the point on the 2D
+      // edge at the vertex's parameter between its chain neighbours instead, when that one lies inside. (Where
+      // neither does, e.g. collinear with a neighbour on a straight chain, the projected point is kept: CGAL's
+      // flips repair those, 1385_Laufrad_1000.stp has such points and meshes exactly.)
+      if (!splits_edge_without_fold(fm.cdt, fh, i, p)) {
+        const Segment& sg = s.complex.segments[r.host];
+        auto param = [&](Index v) { return v == sg.a ? 0.0 : (v == sg.b ? 1.0 : s.vertices[v].t); };
+        const double ta = param(r.prev), tb = param(r.next);
+        const KPoint2 pa = a->point(), pb = b->point();
+        const double u = tb != ta ? (r.t - ta) / (tb - ta) : 0.5;
+        const KPoint2 q(pa.x() + u * (pb.x() - pa.x()), pa.y() + u * (pb.y() - pa.y()));
+        if (splits_edge_without_fold(fm.cdt, fh, i, q)) p = q;
+      }
+      vh = fm.cdt.insert(p, Cdt2::EDGE, fh, i);
+    }
   }
   if (vh == Vh2()) {
     Fh2 hint;
@@ -207,6 +242,13 @@ void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::arra
   vh->info() = w;
   fm.handle_map[w] = vh;
   update_star(s, facet, fm.cdt, vh, new_faces);
+}
+
+bool encroaches_in_facet_plane(const MeshState& s, Index facet, const std::array<Index, 3>& abc, Index w) {
+  const FacetMesh& fm = s.facets[facet];
+  const Vh2 va = fm.find(abc[0]), vb = fm.find(abc[1]), vc = fm.find(abc[2]), vw = fm.find(w);
+  if (va == Vh2() || vb == Vh2() || vc == Vh2() || vw == Vh2()) return true;  // not decidable in 2D: assume so
+  return CGAL::side_of_bounded_circle(va->point(), vb->point(), vc->point(), vw->point()) == CGAL::ON_BOUNDED_SIDE;
 }
 
 std::optional<std::array<Index, 3>> subfacet_containing_projection(const MeshState& s, Index facet, const Point3& p,
