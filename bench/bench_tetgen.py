@@ -6,7 +6,7 @@ TetGen also reads binary STL and sees the same merged polygonal facets). Reporte
 --repeat runs) and output vertex and tetrahedron counts, and the ratios QualMesh / TetGen. Not a test: timings on a
 shared machine are noisy, which is why only ratios from one run are compared.
 
-Usage: bench/bench_tetgen.py [--qualmesh build/converters/qualmesh] [--repeat 3] [MODEL ...]
+Usage: bench/bench_tetgen.py [--qualmesh build/converters/qualmesh] [--repeat 3] [--qualmesh-arg=--no-pump] [MODEL ...]
 Default models: the closed, valid files of ../shared/data/plc/ plus examples/l_bracket.poly.
 """
 import argparse
@@ -77,6 +77,9 @@ def main():
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--radius-edge", default="2.0")
     parser.add_argument("--timeout", type=int, default=600, help="seconds per run before it counts as failed")
+    parser.add_argument("--qualmesh-arg", action="append", default=[],
+                        help="extra argument for `qualmesh mesh` (repeatable), e.g. --qualmesh-arg=--no-pump to "
+                             "compare Rules 1-3 alone with TetGen's refinement")
     parser.add_argument("models", nargs="*")
     args = parser.parse_args()
     args.qualmesh = str(Path(args.qualmesh).resolve())
@@ -97,8 +100,8 @@ def main():
             q_out = t_out = None
             for _ in range(args.repeat):
                 out = Path(tmp) / (model.stem + "_qm.vtu")
-                dt, q = timed([args.qualmesh, "mesh", str(poly), "-o", str(out), "--radius-edge", args.radius_edge],
-                              tmp)
+                dt, q = timed([args.qualmesh, "mesh", str(poly), "-o", str(out), "--radius-edge", args.radius_edge]
+                              + args.qualmesh_arg, tmp)
                 if q.returncode != 0:
                     q_out = f"qualmesh failed ({q.returncode}): {q.stderr.strip()[-120:]}"
                     break

@@ -1,5 +1,5 @@
 // `qualmesh mesh IN -o OUT [--radius-edge 2.0] [--max-edge L] [--max-volume V] [--sliver-angle 15] [--omega 0.5]
-// [--delta 0.45] [--no-pump] [--no-sliver-insertion]`: weighted Delaunay refinement of the input PLC (Cheng & Dey,
+// [--delta 0.45] [--encroaching all|steiner] [--no-pump] [--no-sliver-insertion]`: weighted Delaunay refinement of the input PLC (Cheng & Dey,
 // QUALMESH: Rules 1-4, then pumping, then points at the slivers pumping left; --no-pump stops after Rules 1-3,
 // --no-sliver-insertion after pumping), written to OUT in the format its extension names. A progress bar
 // on stderr when stderr is a terminal (silent otherwise), then a short summary on stdout: counts, quality figures
@@ -8,6 +8,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -110,6 +111,15 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
                       "omega0: Rule 4 tests, and pumping caps, weights at omega0^2 f(v)^2 (default 0.5)");
   command->add_option("--delta", args->options.delta,
                       "Pumping caps weights at delta^2 N(v)^2, N: nearest-vertex distance; below 0.5 (default 0.45)");
+  command
+      ->add_option("--encroaching", args->options.encroaching,
+                   "Which vertices inside the diametral ball of a present subsegment or subfacet make Rules 1-2 "
+                   "split it: 'all' (default: the paper's rules) or 'steiner' (experimental: input vertices do not; "
+                   "far fewer vertices on tessellated surfaces, may not finish on thin CAD parts)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, MeshOptions::Encroaching>{{"steiner", MeshOptions::Encroaching::Steiner},
+                                                          {"all", MeshOptions::Encroaching::All}},
+          CLI::ignore_case));
   command->add_flag("--no-pump", args->no_pump,
                     "Plain Delaunay refinement: no Rule 4, no pumping (all weights zero)");
   command->add_flag("--no-sliver-insertion", args->no_sliver_insertion,

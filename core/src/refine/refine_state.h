@@ -65,6 +65,7 @@ struct SubfacetEntry {
   Point3 point{};
   bool forced = false;  // split even when no vertex encroaches it (Rule 3 rejection)
   int attempts = 0;     // times its split point was rejected (it is queued again behind Rule 1's splits)
+  bool eager = false;   // split when a vertex encroaches it, whichever MeshOptions::encroaching says
 };
 
 struct TetEntry {
