@@ -1,5 +1,6 @@
-// End-to-end tests of CAD models through the mesher (read_cad -> mesh_plc), on every model of shared/data/cad that
-// is not refused (model1.igs stays open after sewing: test_cad.cpp); the acute ones without pumping (CadMeshesNoPump):
+// End-to-end tests of CAD models through the mesher (read_cad -> mesh_plc), on every model of shared/data/cad (all of
+// them mesh: model1.igs, a soup of 28 trimmed faces, sews closed with the automatic tolerance and is refused only
+// with a far smaller one, test_cad.cpp); the acute ones without pumping (CadMeshesNoPump):
 //  - every region's mesh volume equals OpenCASCADE's volume of its solid within the tessellation bound
 //    (sum over the solid's faces of area x (deflection + face tolerance));
 //  - every boundary node lies on its CAD face (OpenCASCADE's distance) within the face's tolerance + deflection;
@@ -131,7 +132,7 @@ INSTANTIATE_TEST_SUITE_P(SharedData, CadMeshes,
                          });
 INSTANTIATE_TEST_SUITE_P(SharedData, CadMeshesNoPump,
                          ::testing::Values("fcFEM_Spanner.FCStd", "bottle.brep", "1385_Laufrad_1000.stp",
-                                           "918_pump_carter_sup_21_03_2006.stp", "U_Joint_2.stp"),
+                                           "918_pump_carter_sup_21_03_2006.stp", "U_Joint_2.stp", "model1.igs"),
                          [](const ::testing::TestParamInfo<const char*>& info) {
                            std::string name = info.param;
                            for (char& ch : name)
