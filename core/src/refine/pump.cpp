@@ -350,12 +350,7 @@ class StarEvaluator {
 // Critical weight of cell c for v: the weight above which v^ is closer than orthogonal to c's orthosphere.
 double critical_weight(const MeshState& s, const KPoint3& p, Ch3 c) {
   if (s.tr.is_infinite(c)) return std::numeric_limits<double>::infinity();
-  const auto& w0 = c->vertex(0)->point();
-  const auto& w1 = c->vertex(1)->point();
-  const auto& w2 = c->vertex(2)->point();
-  const auto& w3 = c->vertex(3)->point();
-  const KPoint3 z = kernel().construct_weighted_circumcenter_3_object()(w0, w1, w2, w3);
-  const double sq_r = kernel().compute_squared_radius_smallest_orthogonal_sphere_3_object()(w0, w1, w2, w3);
+  const auto [z, sq_r] = orthosphere(c);
   return CGAL::squared_distance(p, z) - sq_r;
 }
 
@@ -891,6 +886,15 @@ void pumping_statistics(MeshState& s) {
     if (std::isfinite(f)) cap = std::min(cap, s.options.omega * s.options.omega * f * f);
     s.stats.max_weight_cap_ratio = std::max(s.stats.max_weight_cap_ratio, w / cap);
   }
+}
+
+std::pair<KPoint3, double> orthosphere(Ch3 c) {
+  const auto& w0 = c->vertex(0)->point();
+  const auto& w1 = c->vertex(1)->point();
+  const auto& w2 = c->vertex(2)->point();
+  const auto& w3 = c->vertex(3)->point();
+  return {kernel().construct_weighted_circumcenter_3_object()(w0, w1, w2, w3),
+          kernel().compute_squared_radius_smallest_orthogonal_sphere_3_object()(w0, w1, w2, w3)};
 }
 
 }  // namespace qualmesh::detail

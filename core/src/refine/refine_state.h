@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "cgal_types.h"
@@ -205,6 +206,8 @@ double local_feature_size_at(MeshState& s, Index v);
 // Is finite cell c an in-domain sliver: radius-edge ratio <= rho0 and smallest dihedral angle below
 // MeshOptions::sliver_angle_deg? `min_dihedral_deg` (may be null) gets the cell's smallest dihedral angle.
 bool is_sliver(const MeshState& s, Ch3 c, double* min_dihedral_deg);
+// The orthosphere of finite cell c in the regular triangulation: its centre and squared radius (pump.cpp).
+std::pair<KPoint3, double> orthosphere(Ch3 c);
 // Rule 4 rounds: weighted encroachment by the vertices of slivers (weight omega0^2 f(v)^2), each round drained by
 // run_refinement(); ends when a round finds nothing or the vertex budget of Rule 4 is spent.
 void apply_rule4(MeshState& s);

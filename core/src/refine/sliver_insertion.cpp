@@ -213,12 +213,7 @@ Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, Candidate& out) {
 
 // The candidate points of the file comment around sliver c's orthocentre.
 std::vector<KPoint3> candidate_points(Ch3 c) {
-  const auto& w0 = c->vertex(0)->point();
-  const auto& w1 = c->vertex(1)->point();
-  const auto& w2 = c->vertex(2)->point();
-  const auto& w3 = c->vertex(3)->point();
-  const KPoint3 z = kernel().construct_weighted_circumcenter_3_object()(w0, w1, w2, w3);
-  const double sq_r = kernel().compute_squared_radius_smallest_orthogonal_sphere_3_object()(w0, w1, w2, w3);
+  const auto [z, sq_r] = orthosphere(c);
   std::vector<KPoint3> out{z};
   if (!(sq_r > 0)) return out;
   const double r = std::sqrt(sq_r);
