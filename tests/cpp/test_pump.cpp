@@ -215,17 +215,23 @@ void expect_pumping_properties(const Plc& plc, const std::string& name, qualmesh
   }
 }
 
-TEST(Pump, LShape) { expect_pumping_properties(l_shape(), "l_shape"); }
-
-TEST(Pump, StackedBoxesWithRegions) {
+// Two boxes stacked on a shared internal facet, regions 1 and 2 (the upper one with a volume bound).
+Plc stacked_boxes() {
   PlcBuilder b;
   b.box({0, 0, 0}, {2, 1, 1});
   b.box({0, 0, 1}, {2, 1, 1.6});
   b.plc.regions.push_back({{1, 0.5, 0.5}, 1, 0});
   b.plc.regions.push_back({{1, 0.5, 1.3}, 2, 0.002});
-  expect_pumping_properties(b.plc, "stacked");
+  return b.plc;
+}
+
+TEST(Pump, LShape) { expect_pumping_properties(l_shape(), "l_shape"); }
+
+TEST(Pump, StackedBoxesWithRegions) {
+  const Plc plc = stacked_boxes();
+  expect_pumping_properties(plc, "stacked");
   // Regions stay right through pumping: every tet on its side of the internal facet z = 1.
-  const auto r = qualmesh::mesh_plc(b.plc);
+  const auto r = qualmesh::mesh_plc(plc);
   const auto& m = r.mesh;
   ASSERT_EQ(m.tet_region.size(), m.tets.size());
   for (std::size_t i = 0; i < m.tets.size(); ++i) {
@@ -408,12 +414,7 @@ TEST(SliverInsertion, SizeFieldBox) {
 }
 
 TEST(SliverInsertion, StackedBoxesWithRegions) {
-  PlcBuilder b;
-  b.box({0, 0, 0}, {2, 1, 1});
-  b.box({0, 0, 1}, {2, 1, 1.6});
-  b.plc.regions.push_back({{1, 0.5, 0.5}, 1, 0});
-  b.plc.regions.push_back({{1, 0.5, 1.3}, 2, 0.002});
-  expect_insertion_helps(b.plc, "stacked", {});
+  expect_insertion_helps(stacked_boxes(), "stacked", {});
 }
 
 // Fandisk: besides the properties of expect_pumping_properties, pumping retiles facets (Section 7.2: pumping a facet
