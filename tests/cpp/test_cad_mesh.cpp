@@ -107,6 +107,14 @@ void expect_mesh_matches_cad(const std::string& file, const MeshOptions& options
   EXPECT_EQ(num_off, 0u) << "boundary nodes off their CAD face; worst distance / tolerance = " << worst;
 }
 
+// A test name from a file name: every character that is not a letter or a digit becomes '_'.
+std::string file_test_name(const ::testing::TestParamInfo<const char*>& info) {
+  std::string name = info.param;
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return name;
+}
+
 class CadMeshes : public ::testing::TestWithParam<const char*> {};
 TEST_P(CadMeshes, MeshMatchesCadModel) { expect_mesh_matches_cad(GetParam(), MeshOptions{}); }
 
@@ -124,21 +132,11 @@ INSTANTIATE_TEST_SUITE_P(SharedData, CadMeshes,
                          ::testing::Values("box_static.FCStd", "fcFEM_Stacked_Beam_Example.FCStd", "cube1000.igs",
                                            "red_cube_blue_cylinder.step", "part.step", "t20_data.step",
                                            "wrenchnut.stp", "Kurbelwelle.stp", "Zylkopf.stp"),
-                         [](const ::testing::TestParamInfo<const char*>& info) {
-                           std::string name = info.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         file_test_name);
 INSTANTIATE_TEST_SUITE_P(SharedData, CadMeshesNoPump,
                          ::testing::Values("fcFEM_Spanner.FCStd", "bottle.brep", "1385_Laufrad_1000.stp",
                                            "918_pump_carter_sup_21_03_2006.stp", "U_Joint_2.stp", "model1.igs"),
-                         [](const ::testing::TestParamInfo<const char*>& info) {
-                           std::string name = info.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         file_test_name);
 
 // ---- OpenSCAD ----------------------------------------------------------------------------------------------------
 
@@ -183,12 +181,7 @@ TEST(ScadMeshes, Example001Pumped) { expect_mesh_matches_scad("example001.scad",
 INSTANTIATE_TEST_SUITE_P(SharedData, ScadMeshesNoPump,
                          ::testing::Values("example001.scad", "CSG.scad", "logo.scad", "example019.scad",
                                            "example024.scad"),
-                         [](const ::testing::TestParamInfo<const char*>& info) {
-                           std::string name = info.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         file_test_name);
 
 TEST(CadMeshes, StackedBeamsMeetOnAnInternalFacet) {
   const std::string path = test::shared_path("data/cad/fcFEM_Stacked_Beam_Example.FCStd");
