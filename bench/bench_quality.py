@@ -3,6 +3,9 @@
 Mesh_3 (python3-pygalmesh) on the same input, in the same run, every mesh judged by the one checker
 `qualmesh check MESH --ref INPUT --json`.
 
+TetGen runs as `tetgen -pq2aA` (rows say "tetgen -pq2"): `-aA` makes it honour a .poly's regional maximum volumes
+as QualMesh does (bench_tetgen.py); it changes nothing on inputs without them.
+
 Input: each model is converted once by `qualmesh convert` to a TetGen .poly (bench_tetgen.to_tetgen_poly), which
 QualMesh and TetGen mesh and against which every mesh is checked. When TetGen's mesh of it has a volume error
 (TetGen 1.5.0 misreads some merged polygonal facets, filling through holes, without failing), TetGen is run on the
@@ -239,7 +242,7 @@ def main():
             for _ in range(args.repeat):
                 for stale in Path(tmp).glob(poly.stem + ".1.*"):
                     stale.unlink()
-                dt, proc = run(["tetgen", "-pq2", "-Q", poly.name], args.timeout, tmp)
+                dt, proc = run(["tetgen", "-pq2aA", "-Q", poly.name], args.timeout, tmp)
                 if proc.returncode != 0:
                     break
                 best = min(best, dt)
@@ -257,7 +260,7 @@ def main():
                     tri_poly = tri / poly.name
                     subprocess.run([args.qualmesh, "convert", "--keep-triangles", str(model), str(tri_poly)],
                                    capture_output=True, text=True, check=True)
-                    dt, proc = run(["tetgen", "-pq2", "-Q", tri_poly.name], args.timeout, tri)
+                    dt, proc = run(["tetgen", "-pq2aA", "-Q", tri_poly.name], args.timeout, tri)
                     tool = "tetgen -pq2 (triangles)"
                     lines.append(row(name, tool, dt, check(args.qualmesh, tri / (poly.stem + ".1.ele"), poly))
                                  if proc.returncode == 0 else row(name, tool, 0, f"failed ({proc.returncode})"))
