@@ -122,7 +122,7 @@ def cgal_surface(qualmesh, model, poly, qualmesh_vtu, tmp):
             mesh = meshio.read(off)
             if all(c.type == "triangle" for c in mesh.cells):
                 return off, "input triangles"
-        except Exception:  # polygons meshio cannot read: fall through
+        except (Exception, SystemExit):  # polygons meshio cannot read (meshio then calls sys.exit): fall through
             pass
     hull_triangles_off(qualmesh_vtu, off)
     return off, "hull of QualMesh's mesh"
