@@ -116,6 +116,33 @@ Plc parse_off(const std::string& text, const std::string& file) {
   return plc;
 }
 
+// OpenSCAD 2021.01 writes the same render with its vertices and facets in a different order from run to run (CGAL
+// Nef polyhedra iterate in address order): CSG.scad gave three orders in six runs, the same points and polygons each
+// time. The mesh depends on that order (the triangulation's insertion order), so the render is put in one canonical
+// order: vertices sorted by coordinates, each polygon rotated to start at its smallest vertex (orientation kept),
+// facets sorted. Same .scad, same PLC, same mesh.
+void canonical_order(Plc& plc) {
+  std::vector<Index> order(plc.vertices.size());
+  for (Index i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+    return plc.vertices[a] < plc.vertices[b] || (plc.vertices[a] == plc.vertices[b] && a < b);
+  });
+  std::vector<Index> new_id(order.size());
+  std::vector<Point3> vertices(order.size());
+  for (Index k = 0; k < order.size(); ++k) {
+    new_id[order[k]] = k;
+    vertices[k] = plc.vertices[order[k]];
+  }
+  plc.vertices.swap(vertices);
+  for (Facet& facet : plc.facets)
+    for (auto& polygon : facet.polygons) {
+      for (Index& i : polygon) i = new_id[i];
+      if (!polygon.empty()) std::rotate(polygon.begin(), std::min_element(polygon.begin(), polygon.end()), polygon.end());
+    }
+  std::stable_sort(plc.facets.begin(), plc.facets.end(),
+                   [](const Facet& a, const Facet& b) { return a.polygons < b.polygons; });
+}
+
 using EdgeKey = std::pair<Index, Index>;
 EdgeKey edge_key(Index a, Index b) { return a < b ? EdgeKey{a, b} : EdgeKey{b, a}; }
 
@@ -282,6 +309,7 @@ CadModel read_scad_file(const std::string& path, const CadOptions& options) {
 
   CadModel model;
   model.plc = parse_off(read_text(output), path);
+  canonical_order(model.plc);
   model.plc.name = path;
   if (model.plc.facets.empty())
     throw InputError(ErrorCode::Empty, "openscad rendered an empty model: " + openscad_complaints(console), path);
