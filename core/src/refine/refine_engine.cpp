@@ -324,6 +324,30 @@ void insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& c
     int region;
   };
   std::vector<Outer> outer;
+  // Which candidates survive: every new cell joins the new vertex to a facet of the hole's boundary, so an edge or
+  // face of a destroyed cell is still in the triangulation afterwards exactly when it lies on that boundary (a
+  // cell around it outside the hole meets one inside across a boundary facet holding it). Cheaper than asking the
+  // triangulation (is_edge / is_facet walk the cells around a vertex) for each candidate. Read before the hole's
+  // cells are destroyed.
+  std::vector<std::array<Index, 2>> kept_edges;
+  std::vector<std::array<Index, 3>> kept_faces;
+  if (!cand.subsegments.empty() || !cand.subfacets.empty()) {
+    kept_edges.reserve(3 * cz.boundary.size());
+    kept_faces.reserve(cz.boundary.size());
+    for (const Facet3& f : cz.boundary) {
+      std::array<Index, 3> t{f.first->vertex((f.second + 1) & 3)->info(), f.first->vertex((f.second + 2) & 3)->info(),
+                             f.first->vertex((f.second + 3) & 3)->info()};
+      std::sort(t.begin(), t.end());  // kNoIndex (the infinite vertex) sorts last
+      if (t[1] != kNoIndex) kept_edges.push_back({t[0], t[1]});
+      if (t[2] != kNoIndex) {
+        kept_edges.push_back({t[0], t[2]});
+        kept_edges.push_back({t[1], t[2]});
+        kept_faces.push_back(t);
+      }
+    }
+    std::sort(kept_edges.begin(), kept_edges.end());
+    std::sort(kept_faces.begin(), kept_faces.end());
+  }
   if (region < 0 && s.regions_known) {
     outer.reserve(cz.boundary.size());
     for (const Facet3& f : cz.boundary) {
@@ -373,19 +397,15 @@ void insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& c
 
   // Encroachment by the new vertex, or removal, of the conflict zone's subsegments and subfacets.
   const KPoint3 p = s.kpoint(id);
-  for (const auto& e : cand.subsegments) {
+  for (const auto& e : cand.subsegments) {  // e[1] < e[2]
     if (subsegment_of(s, e[1], e[2]) != e[0]) continue;
-    Ch3 c;
-    int i = 0, j = 0;
-    if (!s.tr.is_edge(s.vertices[e[1]].handle, s.vertices[e[2]].handle, c, i, j) ||
+    if (!std::binary_search(kept_edges.begin(), kept_edges.end(), std::array<Index, 2>{e[1], e[2]}) ||
         strictly_encroaches(s.kpoint(e[1]), s.kpoint(e[2]), p))
       s.subsegment_queue.push_back({e[0], e[1], e[2]});
   }
-  for (const auto& f : cand.subfacets) {
+  for (const auto& f : cand.subfacets) {  // f[1] < f[2] < f[3]
     if (!is_subfacet(s, f[0], f[1], f[2], f[3])) continue;
-    Ch3 c;
-    int i = 0, j = 0, k = 0;
-    if (!s.tr.is_facet(s.vertices[f[1]].handle, s.vertices[f[2]].handle, s.vertices[f[3]].handle, c, i, j, k) ||
+    if (!std::binary_search(kept_faces.begin(), kept_faces.end(), std::array<Index, 3>{f[1], f[2], f[3]}) ||
         strictly_encroaches(s.kpoint(f[1]), s.kpoint(f[2]), s.kpoint(f[3]), p))
       s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, false, {}});
   }
