@@ -1,13 +1,13 @@
-// Input loading shared by the subcommands: PLC formats through read_plc, CAD and OpenSCAD through read_cad when the
-// CAD front end (OpenCASCADE) was built.
+// Input loading shared by the subcommands: PLC formats through read_plc, CAD and OpenSCAD through read_cad in the CAD
+// front end plugin (cad_plugin_loader.h) when it was built.
 #include "cli_common.h"
 
-#include <cstdio>
+#include <cctype>
 
 #include "qualmesh/error.h"
 #include "qualmesh/plc_io.h"
 #if QUALMESH_WITH_CAD
-#include "qualmesh/cad_import.h"
+#include "cad_plugin_loader.h"
 #endif
 
 namespace qualmesh::cli {
@@ -30,24 +30,7 @@ Plc load_cad(const std::string& path, const InputOptions& options, std::vector<s
   CadOptions cad_options;
   cad_options.deflection = options.deflection;
   cad_options.relative_deflection = options.relative_deflection;
-  CadModel model = read_cad(path, cad_options);
-  if (notes) {
-    const CadSummary& s = model.summary;
-    char line[200];
-    std::snprintf(line, sizeof line, "%s model: %zu solids, %zu faces, %zu edges, %zu vertices",
-                  s.source_format.c_str(), s.num_solids, s.num_faces, s.num_edges, s.num_vertices);
-    notes->push_back(line);
-    for (std::size_t i = 0; i < s.solid_volumes.size(); ++i) {
-      std::snprintf(line, sizeof line, "Solid%zu: volume %.10g", i + 1, s.solid_volumes[i]);
-      notes->push_back(line);
-    }
-    if (s.deflection_used > 0) {
-      std::snprintf(line, sizeof line, "curved faces tessellated with chordal deflection %.4g", s.deflection_used);
-      notes->push_back(line);
-    }
-    for (const std::string& healed : s.healing_log) notes->push_back("healed: " + healed);
-  }
-  return std::move(model.plc);
+  return read_cad_through_plugin(path, cad_options, notes);
 }
 #endif
 

@@ -5,7 +5,12 @@ cannot be read is refused with exit code 2 and a message naming the file; `qualm
 CalculiX deck with one ELSET per solid, read back by meshio.
 """
 import json
+import os
 import re
+import subprocess
+from pathlib import Path
+
+import pytest
 
 from conftest import require_module, shared_file
 
@@ -70,3 +75,25 @@ def test_mesh_step_conforms_to_its_cad_model(run_qualmesh, tmp_path):
     assert report["volume_relative_error"] < 1e-9
     assert report["max_facet_area_relative_error"] < 1e-9
     assert check.returncode == 0, check.stdout[:2000]
+
+
+@pytest.mark.parametrize("plugin_kind", ["missing", "not-a-library"])
+def test_unloadable_cad_plugin_is_refused_with_exit_code_2_naming_its_path(qualmesh_exe, tmp_path, plugin_kind):
+    """The CLI dlopens its CAD front end on the first CAD input, from $QUALMESH_CAD_PLUGIN when set (nowhere else).
+    A plugin that is missing or does not load is bad usage: exit code 2, and the message names the plugin's path,
+    the model file and what to do; it is never an internal error or a crash."""
+    if not (Path(qualmesh_exe).parent / "libqualmesh_cad_plugin.so").exists():
+        pytest.skip("this qualmesh was built without the CAD front end")
+    plugin = tmp_path / "plugin" / "libqualmesh_cad_plugin.so"
+    if plugin_kind == "not-a-library":
+        plugin.parent.mkdir()
+        plugin.write_text("not an ELF shared object\n")
+    model = tmp_path / "model.step"  # the plugin fails before the model is opened
+    env = dict(os.environ, QUALMESH_CAD_PLUGIN=str(plugin))
+    proc = subprocess.run([qualmesh_exe, "info", str(model)], capture_output=True, text=True, env=env, timeout=120)
+    assert proc.returncode == 2, proc.stderr
+    assert str(plugin) in proc.stderr
+    assert str(model) in proc.stderr and "error[unsupported]" in proc.stderr
+    assert "CAD front end (OpenCASCADE) is not available" in proc.stderr
+    assert "libocct-data-exchange-dev" in proc.stderr
+    assert "internal error" not in proc.stderr

@@ -1,0 +1,47 @@
+// The interface between the `qualmesh` command line and its CAD front end plugin, libqualmesh_cad_plugin.so (the
+// CAD and OpenSCAD readers of cad_import.h with OpenCASCADE behind them). The CLI dlopens the plugin on its first
+// CAD input only, so that every other run is spared the dynamic linker's ~70 ms of OpenCASCADE relocations.
+//
+// Private to converters/: the CLI and the plugin are built together from one source tree by one compiler against one
+// libstdc++, so C++ objects (Plc, std::string, std::vector) pass by pointer. The entry point is extern "C" and its
+// name carries the interface version: change any type below (or what the plugin does with it) and bump the version,
+// so that a stale plugin fails to load by name instead of misreading memory.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "qualmesh/cad_import.h"
+#include "qualmesh/error.h"
+#include "qualmesh/plc.h"
+
+namespace qualmesh::cad_plugin {
+
+// File name of the plugin, looked for next to the executable (see cad_plugin_loader.h for the search order).
+inline constexpr const char* kPluginFileName = "libqualmesh_cad_plugin.so";
+// Name of the entry point (load_cad_fn) in the plugin.
+inline constexpr const char* kLoadCadSymbol = "qualmesh_cad_plugin_load_cad_v1";
+
+enum class LoadStatus : int {
+  Ok = 0,             // plc and notes are filled
+  InputError = 1,     // read_cad threw InputError: error_code, message, file, line and ids hold its fields
+  OutOfMemory = 2,    // std::bad_alloc
+  InternalError = 3,  // any other exception (a bug): message holds its what()
+};
+
+// What one call fills. Owned by the caller; the plugin only assigns to it.
+struct LoadResult {
+  LoadStatus status = LoadStatus::InternalError;
+  Plc plc;                         // Ok: the model's PLC (read_cad's CadModel::plc)
+  std::vector<std::string> notes;  // Ok: summary lines (format, solids and their volumes, deflection, healing)
+  int error_code = 0;              // InputError: static_cast<int>(ErrorCode)
+  std::string message;             // InputError: InputError::message(); InternalError: what()
+  std::string file;                // InputError: InputError::file()
+  long line = 0;                   // InputError: InputError::line()
+  ElementIds ids;                  // InputError: InputError::ids()
+};
+
+// read_cad(path, *options) into *result. Never throws: every outcome is a LoadStatus. Mutates *result only.
+using LoadCadFn = void (*)(const char* path, const CadOptions* options, LoadResult* result) noexcept;
+
+}  // namespace qualmesh::cad_plugin

@@ -1,0 +1,66 @@
+// Entry point of libqualmesh_cad_plugin.so (cad_plugin_abi.h): runs read_cad and turns its outcome, the PLC and the
+// summary lines or the exception, into a LoadResult, so that no exception crosses the dlopen boundary. The CLI
+// rebuilds an identical InputError from the fields, so messages and exit codes are those of a statically linked
+// front end.
+#include <cstdio>
+#include <exception>
+#include <new>
+#include <type_traits>
+
+#include "cad_plugin_abi.h"
+
+namespace qualmesh::cad_plugin {
+
+namespace {
+
+// The lines `qualmesh info` prints about a CAD source.
+std::vector<std::string> summary_notes(const CadSummary& s) {
+  std::vector<std::string> notes;
+  char line[200];
+  std::snprintf(line, sizeof line, "%s model: %zu solids, %zu faces, %zu edges, %zu vertices",
+                s.source_format.c_str(), s.num_solids, s.num_faces, s.num_edges, s.num_vertices);
+  notes.push_back(line);
+  for (std::size_t i = 0; i < s.solid_volumes.size(); ++i) {
+    std::snprintf(line, sizeof line, "Solid%zu: volume %.10g", i + 1, s.solid_volumes[i]);
+    notes.push_back(line);
+  }
+  if (s.deflection_used > 0) {
+    std::snprintf(line, sizeof line, "curved faces tessellated with chordal deflection %.4g", s.deflection_used);
+    notes.push_back(line);
+  }
+  for (const std::string& healed : s.healing_log) notes.push_back("healed: " + healed);
+  return notes;
+}
+
+}  // namespace
+
+}  // namespace qualmesh::cad_plugin
+
+extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_load_cad_v1(
+    const char* path, const qualmesh::CadOptions* options, qualmesh::cad_plugin::LoadResult* result) noexcept {
+  using namespace qualmesh;
+  using cad_plugin::LoadStatus;
+  // Checked against the declaration the CLI uses: a changed signature must change the versioned name too.
+  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_load_cad_v1), cad_plugin::LoadCadFn>);
+  try {
+    CadModel model = read_cad(path, *options);
+    result->notes = cad_plugin::summary_notes(model.summary);
+    result->plc = std::move(model.plc);
+    result->status = LoadStatus::Ok;
+  } catch (const InputError& e) {
+    result->status = LoadStatus::InputError;
+    result->error_code = static_cast<int>(e.code());
+    result->message = e.message();
+    result->file = e.file();
+    result->line = e.line();
+    result->ids = e.ids();
+  } catch (const std::bad_alloc&) {
+    result->status = LoadStatus::OutOfMemory;
+  } catch (const std::exception& e) {
+    result->status = LoadStatus::InternalError;
+    result->message = e.what();
+  } catch (...) {
+    result->status = LoadStatus::InternalError;
+    result->message = "the CAD front end threw an exception that is not a std::exception";
+  }
+}
