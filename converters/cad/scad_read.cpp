@@ -124,9 +124,7 @@ Plc parse_off(const std::string& text, const std::string& file) {
 void canonical_order(Plc& plc) {
   std::vector<Index> order(plc.vertices.size());
   for (Index i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](Index a, Index b) {
-    return plc.vertices[a] < plc.vertices[b] || (plc.vertices[a] == plc.vertices[b] && a < b);
-  });
+  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return plc.vertices[a] < plc.vertices[b]; });
   std::vector<Index> new_id(order.size());
   std::vector<Point3> vertices(order.size());
   for (Index k = 0; k < order.size(); ++k) {

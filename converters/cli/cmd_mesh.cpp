@@ -1,9 +1,9 @@
 // `qualmesh mesh IN -o OUT [--radius-edge 2.0] [--max-edge L] [--max-volume V] [--sliver-angle 15] [--omega 0.5]
-// [--delta 0.45] [--encroaching all|steiner] [--no-pump] [--no-sliver-insertion]`: weighted Delaunay refinement of the input PLC (Cheng & Dey,
-// QUALMESH: Rules 1-4, then pumping, then points at the slivers pumping left; --no-pump stops after Rules 1-3,
-// --no-sliver-insertion after pumping), written to OUT in the format its extension names. A progress bar
-// on stderr when stderr is a terminal (silent otherwise), then a short summary on stdout: counts, quality figures
-// and time per stage. Exit 2 for bad input or usage; nothing is written then.
+// [--delta 0.45] [--encroaching all|steiner] [--no-pump] [--no-sliver-insertion]`: weighted Delaunay refinement
+// of the input PLC (Cheng & Dey, QUALMESH: Rules 1-4, then pumping, then points at the slivers pumping left;
+// --no-pump stops after Rules 1-3, --no-sliver-insertion after pumping), written to OUT in the format its extension
+// names. A progress bar on stderr when stderr is a terminal (silent otherwise), then a short summary on stdout:
+// counts, quality figures and time per stage. Exit 2 for bad input or usage; nothing is written then.
 #include <unistd.h>
 
 #include <cstdio>

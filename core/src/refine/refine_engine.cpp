@@ -68,9 +68,9 @@ bool encroacher_counts(const MeshState& s, Index v) {
 
 // --- Encroachment of one element, from the triangulation around it -----------------------------------------------
 
-// True when subsegment (u, v) is missing from the triangulation or a vertex lies strictly inside its diametral
-// ball (with `all` false, a vertex that encroacher_counts); `encroacher` gets that vertex (kNoIndex when missing).
-bool subsegment_encroached(const MeshState& s, Index u, Index v, Index* encroacher, bool all) {
+// True when subsegment (u, v) is missing from the triangulation or a vertex that encroacher_counts lies strictly
+// inside its diametral ball; `encroacher` gets that vertex (kNoIndex when missing).
+bool subsegment_encroached(const MeshState& s, Index u, Index v, Index* encroacher) {
   const Vh3 hu = s.vertices[u].handle, hv = s.vertices[v].handle;
   Ch3 c;
   int i = 0, j = 0;
@@ -81,7 +81,7 @@ bool subsegment_encroached(const MeshState& s, Index u, Index v, Index* encroach
   do {
     for (int k = 0; k < 4; ++k) {
       const Vh3 w = cc->vertex(k);
-      if (w == hu || w == hv || is_infinite(s, w) || !(all || encroacher_counts(s, w->info()))) continue;
+      if (w == hu || w == hv || is_infinite(s, w) || !encroacher_counts(s, w->info())) continue;
       if (strictly_encroaches(a, b, s.kpoint(w->info()))) {
         *encroacher = w->info();
         return true;
@@ -296,7 +296,7 @@ Index add_vertex(MeshState& s, const Point3& p, VertexKind kind, Index host, dou
 
 void enqueue_subsegment_if_encroached(MeshState& s, Index seg, Index u, Index v) {
   Index enc;
-  if (subsegment_encroached(s, u, v, &enc, false)) s.subsegment_queue.push_back({seg, u, v});
+  if (subsegment_encroached(s, u, v, &enc)) s.subsegment_queue.push_back({seg, u, v});
 }
 
 void enqueue_subfacet_if_encroached(MeshState& s, Index facet, const std::array<Index, 3>& abc) {
@@ -331,19 +331,19 @@ void insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& c
   // cells are destroyed.
   std::vector<std::array<Index, 2>> kept_edges;
   std::vector<std::array<Index, 3>> kept_faces;
-  if (!cand.subsegments.empty() || !cand.subfacets.empty()) {
-    kept_edges.reserve(3 * cz.boundary.size());
-    kept_faces.reserve(cz.boundary.size());
+  const bool want_edges = !cand.subsegments.empty(), want_faces = !cand.subfacets.empty();
+  if (want_edges || want_faces) {
     for (const Facet3& f : cz.boundary) {
       std::array<Index, 3> t{f.first->vertex((f.second + 1) & 3)->info(), f.first->vertex((f.second + 2) & 3)->info(),
                              f.first->vertex((f.second + 3) & 3)->info()};
       std::sort(t.begin(), t.end());  // kNoIndex (the infinite vertex) sorts last
-      if (t[1] != kNoIndex) kept_edges.push_back({t[0], t[1]});
-      if (t[2] != kNoIndex) {
+      if (want_edges && t[1] != kNoIndex) kept_edges.push_back({t[0], t[1]});
+      if (t[2] == kNoIndex) continue;
+      if (want_edges) {
         kept_edges.push_back({t[0], t[2]});
         kept_edges.push_back({t[1], t[2]});
-        kept_faces.push_back(t);
       }
+      if (want_faces) kept_faces.push_back(t);
     }
     std::sort(kept_edges.begin(), kept_edges.end());
     std::sort(kept_faces.begin(), kept_faces.end());
@@ -440,7 +440,7 @@ void split_subsegment(MeshState& s, Index seg, Index u, Index v) {
 void process_subsegment(MeshState& s, const SubsegmentEntry& e) {
   if (subsegment_of(s, e.u, e.v) != e.segment) return;  // stale
   Index enc = kNoIndex;
-  if (!e.forced && !subsegment_encroached(s, e.u, e.v, &enc, false)) return;
+  if (!e.forced && !subsegment_encroached(s, e.u, e.v, &enc)) return;
   split_subsegment(s, e.segment, e.u, e.v);
 }
 
