@@ -56,6 +56,8 @@ int run_mesh(MeshArgs& args) {
   std::printf("input:       %zu vertices, %zu facets\n", plc.vertices.size(), plc.facets.size());
   std::printf("output:      %zu vertices (%zu Steiner), %zu tetrahedra, %zu boundary faces\n",
               result.mesh.points.size(), st.num_steiner_vertices, st.num_tets, st.num_boundary_faces);
+  if (st.encroaching_fell_back)
+    std::printf("encroaching: steiner mode gave up (-v says why); meshed again with the paper's rule\n");
   std::printf("insertions:  rule 1 %zu, rule 2 %zu, rule 3 %zu; %zu centres rejected; %zu small-angle skips\n",
               st.num_rule1_insertions, st.num_rule2_insertions, st.num_rule3_insertions,
               st.num_rejected_circumcenters, st.num_skipped_small_angle);

@@ -12,6 +12,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
+#include <string>
 
 #include "qualmesh/quality.h"
 #include "refine/refine_state.h"
@@ -41,10 +43,25 @@ void begin_stage(detail::MeshState& s, MeshStage stage) {
   if (s.progress) s.progress(ProgressEvent{stage, 0.0, s.tr.number_of_vertices()});
 }
 
-}  // namespace
+// Encroaching::Steiner: false (and a log line) when it gave up on its work budget, left a subsegment or subfacet
+// missing, or flooded a region through a missing subfacet (its entry dropped after its retries while the queues
+// ran dry); always true with the paper's rule.
+bool steiner_holds(detail::MeshState& s, const char* when) {
+  if (s.options.encroaching == MeshOptions::Encroaching::All || s.vertex_limit_reached) return true;
+  if (s.steiner_abandoned.empty() && !detail::boundary_present(s))
+    s.steiner_abandoned = std::string("a subsegment or subfacet is missing ") + when;
+  if (s.steiner_abandoned.empty() && s.regions_known && !detail::region_boundaries_are_subfacets(s))
+    s.steiner_abandoned = std::string("a region's boundary crosses no subfacet ") + when;
+  if (s.steiner_abandoned.empty()) return true;
+  s.log_line("encroaching: Steiner mode gave up (" + s.steiner_abandoned + "); meshing again with the paper's rule");
+  return false;
+}
 
-MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCallback& progress,
-                    const LogCallback& log) {
+// One run of the stages. Encroaching::Steiner (experimental) guarantees neither that every subsegment and subfacet
+// is recovered nor small conflict zones: returns nothing when it gave up, and mesh_plc() runs again with the paper's
+// rule.
+std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& options, const ProgressCallback& progress,
+                                       const LogCallback& log) {
   auto state = std::make_unique<detail::MeshState>();
   detail::MeshState& s = *state;
   s.plc = &plc;
@@ -72,6 +89,7 @@ MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCa
   begin_stage(s, MeshStage::Boundary);
   detail::enqueue_initial_boundary(s);
   detail::run_refinement(s, false);
+  if (!steiner_holds(s, "after the boundary stage")) return std::nullopt;
   s.stats.seconds_boundary = seconds_since(t);
 
   if (!s.vertex_limit_reached) {
@@ -84,6 +102,7 @@ MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCa
     begin_stage(s, MeshStage::Refinement);
     detail::enqueue_all_tets(s);
     detail::run_refinement(s, true);
+    if (!steiner_holds(s, "after refinement")) return std::nullopt;
     if (!s.region_pending.empty()) {
       std::vector<detail::Ch3> assigned;
       detail::flood_pending_regions(s, assigned);
@@ -132,6 +151,18 @@ MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCa
   st.seconds_extraction = seconds_since(t);
   if (s.progress) s.progress(ProgressEvent{MeshStage::Extraction, 1.0, s.tr.number_of_vertices()});
   result.stats = st;
+  return result;
+}
+
+}  // namespace
+
+MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCallback& progress,
+                    const LogCallback& log) {
+  if (auto result = mesh_attempt(plc, options, progress, log)) return std::move(*result);
+  MeshOptions paper = options;
+  paper.encroaching = MeshOptions::Encroaching::All;
+  MeshResult result = *mesh_attempt(plc, paper, progress, log);
+  result.stats.encroaching_fell_back = true;
   return result;
 }
 

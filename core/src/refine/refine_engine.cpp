@@ -24,10 +24,21 @@
 // vertex lies in its diametral ball (or it is missing, or a rejected Rule 2/3 centre encroaches it). Input vertices
 // do not count: a tessellated surface's obtuse triangles put input vertices in the diametral balls of neighbouring
 // input edges everywhere, and splitting those is what multiplies the vertex count (elephant.off: 17863 vertices
-// with the paper's rule, 2776 without; conformity needs the elements present, not empty balls). Where such an
-// element is not Gabriel, a tetrahedron's circumcentre may leave the domain through subfacets it does not encroach;
-// Rule 3 then gives those crossed subfacets the paper's test. Not the default: on bottle.brep (thin wall, 9 degree
-// thread) refinement ran for minutes without finishing (the paper's rules: 9 s); the cause is not found yet.
+// with the paper's rule, 2776 without; conformity needs the elements present, not empty balls). Nor does a vertex
+// of a segment for the subsegments of another segment sharing an input vertex with it (Shewchuk's rule for small
+// angles: on a tessellated surface every input vertex is the apex of acute angles, and those mutual encroachments
+// were most of the remaining Rule 1 splits). Where elements are not Gabriel, centres may lie beyond them:
+//   - a subfacet's circumcentre beyond a subsegment of its facet rejects it for the first subsegment that the
+//     straight walk in the facet's plane crosses (subsegment_towards, as Triangle does), without computing the
+//     centre's conflict zone, which is huge outside the domain (the cells there are never refined);
+//   - a tetrahedron's circumcentre is first tried on the part of its conflict zone reachable without crossing a
+//     subfacet (conflict_zone_in_region); when the zone would cross one, the crossed subfacets get the paper's test
+//     (split when any vertex encroaches them), and from the cell's third attempt on are split as the paper's mode
+//     splits every subfacet z's zone destroys (cheese.off: the encroached subfacet is not always one z crosses).
+// Steiner mode guarantees neither recovery nor small conflict zones: mesher.cpp checks after each stage that every
+// subsegment and subfacet is present and that regions end at subfacets, run_refinement() keeps a budget on the
+// average conflict zone, and when either fails the input is meshed again with the paper's rule
+// (MeshStats::encroaching_fell_back; bottle.brep, part.step and U_Joint_2.stp do).
 //
 // Acute input angles (beyond the paper, which assumes none): concentric shells for Rule 1 (subsegments.cpp), and
 // Rule 3 does not split a tetrahedron whose shortest edge joins vertices on two input elements that meet at an
@@ -38,6 +49,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <unordered_set>
 
 #include "qualmesh/error.h"
 #include "refine/refine_state.h"
@@ -62,15 +74,27 @@ bool is_infinite(const MeshState& s, Vh3 v) { return v == s.tr.infinite_vertex()
 
 // Whether vertex v inside the diametral ball of a present subsegment or subfacet makes Rules 1-2 split it
 // (MeshOptions::encroaching: the paper, and the default, count every vertex; Steiner mode not input vertices).
-bool encroacher_counts(const MeshState& s, Index v) {
-  return s.options.encroaching == MeshOptions::Encroaching::All || s.vertices[v].kind != VertexKind::Input;
+bool segments_share_endpoint(const MeshState& s, Index s1, Index s2) {
+  const Segment& a = s.complex.segments[s1];
+  const Segment& b = s.complex.segments[s2];
+  return a.a == b.a || a.a == b.b || a.b == b.a || a.b == b.b;
+}
+
+bool encroacher_counts(const MeshState& s, Index v, Index segment = kNoIndex) {
+  if (s.options.encroaching == MeshOptions::Encroaching::All) return true;
+  const VertexRecord& r = s.vertices[v];
+  if (r.kind == VertexKind::Input) return false;
+  if (segment != kNoIndex && r.kind == VertexKind::Segment && r.host != segment &&
+      segments_share_endpoint(s, r.host, segment))
+    return false;
+  return true;
 }
 
 // --- Encroachment of one element, from the triangulation around it -----------------------------------------------
 
 // True when subsegment (u, v) is missing from the triangulation or a vertex that encroacher_counts lies strictly
 // inside its diametral ball; `encroacher` gets that vertex (kNoIndex when missing).
-bool subsegment_encroached(const MeshState& s, Index u, Index v, Index* encroacher) {
+bool subsegment_encroached(const MeshState& s, Index segment, Index u, Index v, Index* encroacher) {
   const Vh3 hu = s.vertices[u].handle, hv = s.vertices[v].handle;
   Ch3 c;
   int i = 0, j = 0;
@@ -81,7 +105,7 @@ bool subsegment_encroached(const MeshState& s, Index u, Index v, Index* encroach
   do {
     for (int k = 0; k < 4; ++k) {
       const Vh3 w = cc->vertex(k);
-      if (w == hu || w == hv || is_infinite(s, w) || !encroacher_counts(s, w->info())) continue;
+      if (w == hu || w == hv || is_infinite(s, w) || !encroacher_counts(s, w->info(), segment)) continue;
       if (strictly_encroaches(a, b, s.kpoint(w->info()))) {
         *encroacher = w->info();
         return true;
@@ -137,6 +161,8 @@ bool find_conflict_zone(MeshState& s, const KPoint3& p, Ch3 hint, ConflictZone& 
   cz.internal.clear();
   s.tr.find_conflicts(wp, c, std::back_inserter(cz.boundary), std::back_inserter(cz.cells),
                       std::back_inserter(cz.internal));
+  s.zone_cells += cz.cells.size();
+  ++s.zone_count;
   return !cz.cells.empty() && !cz.boundary.empty();
 }
 
@@ -296,7 +322,7 @@ Index add_vertex(MeshState& s, const Point3& p, VertexKind kind, Index host, dou
 
 void enqueue_subsegment_if_encroached(MeshState& s, Index seg, Index u, Index v) {
   Index enc;
-  if (subsegment_encroached(s, u, v, &enc)) s.subsegment_queue.push_back({seg, u, v});
+  if (subsegment_encroached(s, seg, u, v, &enc)) s.subsegment_queue.push_back({seg, u, v});
 }
 
 void enqueue_subfacet_if_encroached(MeshState& s, Index facet, const std::array<Index, 3>& abc) {
@@ -440,7 +466,7 @@ void split_subsegment(MeshState& s, Index seg, Index u, Index v) {
 void process_subsegment(MeshState& s, const SubsegmentEntry& e) {
   if (subsegment_of(s, e.u, e.v) != e.segment) return;  // stale
   Index enc = kNoIndex;
-  if (!e.forced && !subsegment_encroached(s, e.u, e.v, &enc)) return;
+  if (!e.forced && !subsegment_encroached(s, e.segment, e.u, e.v, &enc)) return;
   split_subsegment(s, e.segment, e.u, e.v);
 }
 
@@ -455,6 +481,20 @@ void check_new_subfacets(MeshState& s, Index facet, const std::vector<std::array
 bool split_subfacet(MeshState& s, Index facet, const std::array<Index, 3>& abc) {
   const KPoint3 a = s.kpoint(abc[0]), b = s.kpoint(abc[1]), c = s.kpoint(abc[2]);
   const KPoint3 center = CGAL::circumcenter(a, b, c);
+  if (s.options.encroaching != MeshOptions::Encroaching::All) {
+    // Steiner mode: a centre beyond a subsegment (one encroached by a tolerated vertex, typically next to an acute
+    // corner of the facet) is rejected for the first subsegment crossed by the straight walk in the facet's plane
+    // from the subfacet to the centre, as Triangle does, without computing the centre's conflict zone (huge when
+    // the centre is outside the domain: the cells there are never refined) or locating it from afar.
+    if (auto uv = subsegment_towards(s, facet, abc, to_point3(center))) {
+      const Index seg = subsegment_of(s, (*uv)[0], (*uv)[1]);
+      if (seg != kNoIndex) {
+        s.subsegment_queue.push_back({seg, std::min((*uv)[0], (*uv)[1]), std::max((*uv)[0], (*uv)[1]), true});
+        ++s.stats.num_rejected_circumcenters;
+        return false;
+      }
+    }
+  }
   ConflictZone cz;
   if (!find_conflict_zone(s, center, hint_of(s, abc[0]), cz)) return false;
   Candidates cand;
@@ -585,6 +625,55 @@ void retry_through_subfacets(MeshState& s, Ch3 c, const TetEntry& e) {
   else give_up(s, e.vertices);
 }
 
+// Encroaching::Steiner, Rule 3: the part of z's conflict zone reachable from c without crossing a subfacet (a
+// breadth-first search over cells whose power sphere holds z). Appends to `crossed` the subfacets with a conflicting
+// cell on both sides, where the zone would leave across the boundary, and to `segments` the subsegments among the
+// reached cells' edges that z encroaches. The full zone of a centre outside the domain can be most of the mesh (a
+// non-Gabriel boundary gives its cells huge circumspheres); this part of it stays local.
+void conflict_zone_in_region(MeshState& s, const KPoint3& z, Ch3 c, std::vector<std::array<Index, 4>>& crossed,
+                             std::vector<std::array<Index, 3>>& segments) {
+  const KWeightedPoint3 wp(z, 0);
+  std::vector<Ch3> stack{c}, zone;
+  std::unordered_set<const void*> seen{&*c};
+  while (!stack.empty()) {
+    const Ch3 x = stack.back();
+    stack.pop_back();
+    zone.push_back(x);
+    for (int i = 0; i < 4; ++i) {
+      const Ch3 n = x->neighbor(i);
+      if (seen.count(&*n)) continue;
+      const Index facet = face_subfacet(s, x, i);
+      if (s.tr.side_of_power_sphere(n, wp, true) != CGAL::ON_BOUNDED_SIDE) continue;
+      if (facet != kNoIndex) {
+        std::array<Index, 3> f{x->vertex((i + 1) & 3)->info(), x->vertex((i + 2) & 3)->info(),
+                               x->vertex((i + 3) & 3)->info()};
+        std::sort(f.begin(), f.end());
+        crossed.push_back({facet, f[0], f[1], f[2]});
+        continue;
+      }
+      seen.insert(&*n);
+      stack.push_back(n);
+    }
+  }
+  s.zone_cells += zone.size();
+  ++s.zone_count;
+  for (const Ch3& x : zone) {
+    Index ids[4];
+    for (int k = 0; k < 4; ++k) ids[k] = x->vertex(k)->info();
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        if (ids[a] == kNoIndex || ids[b] == kNoIndex) continue;
+        const Index seg = subsegment_of(s, ids[a], ids[b]);
+        if (seg != kNoIndex && strictly_encroaches(s.kpoint(ids[a]), s.kpoint(ids[b]), z))
+          segments.push_back({seg, std::min(ids[a], ids[b]), std::max(ids[a], ids[b])});
+      }
+  }
+  std::sort(crossed.begin(), crossed.end());
+  crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
+  std::sort(segments.begin(), segments.end());
+  segments.erase(std::unique(segments.begin(), segments.end()), segments.end());
+}
+
 void process_tet(MeshState& s, const TetEntry& e) {
   Ch3 c;
   const auto& v = e.vertices;
@@ -618,6 +707,29 @@ void process_tet(MeshState& s, const TetEntry& e) {
   }
   KPoint3 z = CGAL::circumcenter(s.kpoint(v[0]), s.kpoint(v[1]), s.kpoint(v[2]), s.kpoint(v[3]));
   if (auto zf = degenerate_cell_centre(s, v)) z = *zf;
+  if (s.options.encroaching != MeshOptions::Encroaching::All) {
+    // Steiner mode: find from the in-region part of the zone whether z leaves the region (see above), before
+    // computing a zone that may be huge. Same answers as below: encroached subsegments first (Rule 1), then the
+    // crossed subfacets, split when z encroaches them (Rule 2), else given the paper's test (eager).
+    std::vector<std::array<Index, 4>> crossed;
+    std::vector<std::array<Index, 3>> segments;
+    conflict_zone_in_region(s, z, c, crossed, segments);
+    if (!crossed.empty()) {
+      for (const auto& sg : segments) s.subsegment_queue.push_back({sg[0], sg[1], sg[2], true});
+      if (segments.empty()) {
+        for (const auto& f : crossed) {
+          if (strictly_encroaches(s.kpoint(f[1]), s.kpoint(f[2]), s.kpoint(f[3]), z) || e.attempts >= 2)
+            s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, true, to_point3(z), true});
+          else
+            s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, false, {}, false, 0, true});
+        }
+      }
+      ++s.stats.num_rejected_circumcenters;
+      if (e.attempts < 8) s.tet_queue.push_back({e.vertices, e.attempts + 1});
+      else give_up(s, e.vertices);
+      return;
+    }
+  }
   ConflictZone cz;
   if (!find_conflict_zone(s, z, c, cz) || std::find(cz.cells.begin(), cz.cells.end(), c) == cz.cells.end()) {
     // Rounding put z on a vertex, or so far away (a nearly flat cell on two nearly coplanar facets of a curved
@@ -808,6 +920,44 @@ void enqueue_all_tets(MeshState& s) {
   for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) enqueue_tet_if_bad(s, c);
 }
 
+bool region_boundaries_are_subfacets(const MeshState& s) {
+  for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) {
+    const int region = c->info().region;
+    if (region < 0) continue;
+    for (int i = 0; i < 4; ++i) {
+      const Ch3 n = c->neighbor(i);
+      const int other = s.tr.is_infinite(n) ? kOutsideRegion : n->info().region;
+      if (other != region && face_subfacet(s, c, i) == kNoIndex) return false;
+    }
+  }
+  return true;
+}
+
+bool boundary_present(const MeshState& s) {
+  for (Index seg = 0; seg < s.complex.segments.size(); ++seg) {
+    const Index end = s.complex.segments[seg].b;
+    for (Index u = s.complex.segments[seg].a, v; u != end; u = v) {
+      v = next_on_segment(s, seg, u);
+      Ch3 c;
+      int i = 0, j = 0;
+      if (!s.tr.is_edge(s.vertices[u].handle, s.vertices[v].handle, c, i, j)) return false;
+    }
+  }
+  std::vector<std::array<Index, 3>> faces;
+  for (Index f = 0; f < s.facets.size(); ++f) {
+    faces.clear();
+    collect_subfacets(s, f, faces);
+    for (const auto& abc : faces) {
+      Ch3 c;
+      int i = 0, j = 0, k = 0;
+      if (!s.tr.is_facet(s.vertices[abc[0]].handle, s.vertices[abc[1]].handle, s.vertices[abc[2]].handle, c, i, j, k))
+        return false;
+    }
+  }
+  return true;
+}
+
+
 Index insert_volume_vertex(MeshState& s, const Point3& p, std::vector<Ch3>& cells, std::vector<Facet3>& boundary,
                            int region) {
   ConflictZone cz;
@@ -820,6 +970,10 @@ Index insert_volume_vertex(MeshState& s, const Point3& p, std::vector<Ch3>& cell
   return w;
 }
 
+// Average conflict-zone size (cells) over a window of insertions above which Encroaching::Steiner gives way to the
+// paper's rule. Measured averages: 17-70 on the benchmark models in either mode.
+constexpr std::size_t kSteinerZoneBudget = 250;
+
 void run_refinement(MeshState& s, bool with_rule3) {
   std::size_t steps = 0;
   std::vector<Ch3> assigned;
@@ -828,6 +982,18 @@ void run_refinement(MeshState& s, bool with_rule3) {
       const double queued = double(s.subsegment_queue.size() + s.subfacet_queue.size() + s.tet_queue.size());
       const double done = double(s.stats.num_steiner_vertices);
       report(s, done / (done + queued + 1));
+      // Encroaching::Steiner's work budget: where tolerated encroachers leave the boundary far from Gabriel, cells
+      // near it get huge circumspheres and every insertion's conflict zone becomes large (U_Joint_2.stp: averages
+      // of 300-700 cells, against 20-60 on the same model with the paper's rule). Then mesh_plc() starts again with
+      // the paper's rule.
+      if (s.options.encroaching != MeshOptions::Encroaching::All && s.zone_count >= 4096) {
+        if (s.zone_cells > kSteinerZoneBudget * s.zone_count) {
+          s.steiner_abandoned = "conflict zones of " + std::to_string(s.zone_cells / s.zone_count) +
+                                " cells on average";
+          return;
+        }
+        s.zone_cells = s.zone_count = 0;
+      }
       if (steps % (1u << 18) == 0)
         s.log_line("refinement: " + std::to_string(steps) + " steps, " + std::to_string(s.tr.number_of_vertices()) +
                    " vertices (rule 1 " + std::to_string(s.stats.num_rule1_insertions) + ", rule 2 " +

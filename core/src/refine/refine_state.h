@@ -110,6 +110,11 @@ struct MeshState {
   // sliver insertion adds a vertex next to v.
   std::vector<double> sq_nearest;
 
+  // Encroaching::Steiner's work budget (run_refinement): cells of the conflict zones computed since the last check.
+  std::size_t zone_cells = 0, zone_count = 0;
+  // Non-empty: why Encroaching::Steiner gave up (run_refinement stopped); mesh_plc() starts again with the paper's rule.
+  std::string steiner_abandoned;
+
   MeshStats stats;
   ProgressCallback progress;
   LogCallback log;
@@ -158,6 +163,11 @@ bool is_subfacet(const MeshState& s, Index facet, Index a, Index b, Index c);
 // `hint`: a vertex of f near p (kNoIndex: none), where the 2D walk starts.
 std::optional<std::array<Index, 3>> subfacet_containing_projection(const MeshState& s, Index facet, const Point3& p,
                                                                    Index hint = kNoIndex);
+// The first subsegment (its two vertex ids) that the straight line in f's plane from the centroid of subfacet abc
+// to p's location crosses; none when p's location is reached first (or the walk leaves the triangulation or
+// takes more than 256 steps).
+std::optional<std::array<Index, 2>> subsegment_towards(const MeshState& s, Index facet,
+                                                      const std::array<Index, 3>& abc, const Point3& p);
 // Is the 2D location of point p (on f's plane) inside f's domain?
 bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p, Index hint = kNoIndex);
 // Tries to flip 2D edges of subfacet (a, b, c) so that f's subfacets match the 3D triangulation's choice among
@@ -174,6 +184,11 @@ void enqueue_initial_boundary(MeshState& s);
 // Drains Rules 1-2 (stage Boundary) or Rules 1-3 (stage Refinement).
 void run_refinement(MeshState& s, bool with_rule3);
 void enqueue_all_tets(MeshState& s);
+// Whether every face between cells of different regions (or an in-domain cell and the outside) is a subfacet.
+bool region_boundaries_are_subfacets(const MeshState& s);
+// Whether every subsegment and subfacet is an edge / face of the triangulation (a global scan).
+bool boundary_present(const MeshState& s);
+
 // Inserts a volume vertex at p (weight zero) into the hole `cells` (p's conflict zone, CGAL find_conflicts, with
 // its boundary facets `boundary`; both are consumed) with the engine's bookkeeping: vertex record, statistics,
 // regions (`region`: the zone's), and the Rule 1-3 queues for whatever p encroaches or makes bad (a caller that

@@ -277,6 +277,34 @@ bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p, Ind
   return false;
 }
 
+std::optional<std::array<Index, 2>> subsegment_towards(const MeshState& s, Index facet,
+                                                      const std::array<Index, 3>& abc, const Point3& p) {
+  const FacetMesh& fm = s.facets[facet];
+  const Vh2 va = fm.find(abc[0]), vb = fm.find(abc[1]), vc = fm.find(abc[2]);
+  Fh2 fh;
+  if (va == Vh2() || vb == Vh2() || vc == Vh2() || !fm.cdt.is_face(va, vb, vc, fh)) return std::nullopt;
+  const KPoint2 q = local_point(s, facet, p);
+  const KPoint2 o = CGAL::centroid(va->point(), vb->point(), vc->point());
+  // Straight walk from o to q: leave each face through an edge that q lies strictly beyond and that the line oq
+  // meets. Bounded: a centre that far away is left to the caller's general path.
+  for (int steps = 0; steps < 256; ++steps) {
+    if (fm.cdt.is_infinite(fh)) return std::nullopt;
+    int exit = -1;
+    for (int i = 0; i < 3 && exit < 0; ++i) {
+      const KPoint2& x = fh->vertex(Cdt2::ccw(i))->point();
+      const KPoint2& y = fh->vertex(Cdt2::cw(i))->point();
+      if (CGAL::orientation(x, y, q) != CGAL::RIGHT_TURN) continue;  // the face lies left of (x, y)
+      const CGAL::Orientation ox = CGAL::orientation(o, q, x), oy = CGAL::orientation(o, q, y);
+      if (ox != oy || ox == CGAL::COLLINEAR) exit = i;
+    }
+    if (exit < 0) return std::nullopt;  // q is in this face: no subsegment in between
+    if (fh->is_constrained(exit))
+      return std::array<Index, 2>{fh->vertex(Cdt2::ccw(exit))->info(), fh->vertex(Cdt2::cw(exit))->info()};
+    fh = fh->neighbor(exit);
+  }
+  return std::nullopt;
+}
+
 bool flip_subfacet_to_match(MeshState& s, Index facet, const std::array<Index, 3>& abc,
                             std::vector<std::array<Index, 3>>* new_faces, Index only_across_from) {
   FacetMesh& fm = s.facets[facet];
