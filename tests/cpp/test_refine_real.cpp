@@ -117,7 +117,7 @@ TEST(RealModels, InputVerticesEncroachingIsAnOption) {
 // acute apex): a segment vertex does not encroach the subsegments of a segment sharing an endpoint with its own, a
 // vertex that keeps a subfacet out stops being tolerated, and a subfacet centre beyond a subsegment splits that
 // subsegment. Before those rules anchor and pinion did not finish in 300 s. Measured without pumping (paper's rule /
-// Steiner): anchor 18411 / 5363, pinion 12002 / 7119, fandisk 28003 / 7424 vertices; none falls back.
+// Steiner): anchor 18411 / 5360, pinion 12002 / 7094, fandisk 28003 / 7424 vertices; none falls back.
 TEST(RealModels, SteinerModeOnTessellatedSurfaces) {
   MeshOptions paper;
   paper.pump = false;
