@@ -44,8 +44,8 @@ void begin_stage(detail::MeshState& s, MeshStage stage) {
 }
 
 // Encroaching::Steiner: false (and a log line) when it gave up on its work budget, left a subsegment or subfacet
-// missing, or flooded a region through a missing subfacet (its entry dropped after its retries while the queues
-// ran dry); always true with the paper's rule.
+// missing, or let a region flood through a subfacet that was missing at that moment (t13_data.stl as unmerged
+// triangles; the cause is not found yet); always true with the paper's rule.
 bool steiner_holds(detail::MeshState& s, const char* when) {
   if (s.options.encroaching == MeshOptions::Encroaching::All || s.vertex_limit_reached) return true;
   if (s.steiner_abandoned.empty() && !detail::boundary_present(s))

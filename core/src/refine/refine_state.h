@@ -112,7 +112,8 @@ struct MeshState {
 
   // Encroaching::Steiner's work budget (run_refinement): cells of the conflict zones computed since the last check.
   std::size_t zone_cells = 0, zone_count = 0;
-  // Non-empty: why Encroaching::Steiner gave up (run_refinement stopped); mesh_plc() starts again with the paper's rule.
+  // Non-empty: why Encroaching::Steiner gave up (run_refinement stopped); mesh_plc() starts again with the paper's
+  // rule.
   std::string steiner_abandoned;
 
   MeshStats stats;
