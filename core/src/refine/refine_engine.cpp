@@ -626,14 +626,15 @@ void retry_through_subfacets(MeshState& s, Ch3 c, const TetEntry& e) {
 }
 
 // Encroaching::Steiner, Rule 3: the part of z's conflict zone reachable from c without crossing a subfacet (a
-// breadth-first search over cells whose power sphere holds z). Appends to `crossed` the subfacets with a conflicting
-// cell on both sides, where the zone would leave across the boundary, and to `segments` the subsegments among the
-// reached cells' edges that z encroaches. The full zone of a centre outside the domain can be most of the mesh (a
-// non-Gabriel boundary gives its cells huge circumspheres); this part of it stays local.
-void conflict_zone_in_region(MeshState& s, const KPoint3& z, Ch3 c, std::vector<std::array<Index, 4>>& crossed,
-                             std::vector<std::array<Index, 3>>& segments) {
+// breadth-first search over cells whose power sphere holds z), into `zone`. Returns the subfacets with a conflicting
+// cell on both sides, where the zone would leave across the boundary (sorted; none: `zone` is the whole conflict
+// zone). The full zone of a centre outside the domain can be most of the mesh (a non-Gabriel boundary gives its
+// cells huge circumspheres); this part of it stays local.
+std::vector<std::array<Index, 4>> conflict_zone_in_region(MeshState& s, const KPoint3& z, Ch3 c,
+                                                          std::vector<Ch3>& zone) {
   const KWeightedPoint3 wp(z, 0);
-  std::vector<Ch3> stack{c}, zone;
+  std::vector<std::array<Index, 4>> crossed;
+  std::vector<Ch3> stack{c};
   std::unordered_set<const void*> seen{&*c};
   while (!stack.empty()) {
     const Ch3 x = stack.back();
@@ -657,21 +658,9 @@ void conflict_zone_in_region(MeshState& s, const KPoint3& z, Ch3 c, std::vector<
   }
   s.zone_cells += zone.size();
   ++s.zone_count;
-  for (const Ch3& x : zone) {
-    Index ids[4];
-    for (int k = 0; k < 4; ++k) ids[k] = x->vertex(k)->info();
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) {
-        if (ids[a] == kNoIndex || ids[b] == kNoIndex) continue;
-        const Index seg = subsegment_of(s, ids[a], ids[b]);
-        if (seg != kNoIndex && strictly_encroaches(s.kpoint(ids[a]), s.kpoint(ids[b]), z))
-          segments.push_back({seg, std::min(ids[a], ids[b]), std::max(ids[a], ids[b])});
-      }
-  }
   std::sort(crossed.begin(), crossed.end());
   crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
-  std::sort(segments.begin(), segments.end());
-  segments.erase(std::unique(segments.begin(), segments.end()), segments.end());
+  return crossed;
 }
 
 void process_tet(MeshState& s, const TetEntry& e) {
@@ -709,20 +698,29 @@ void process_tet(MeshState& s, const TetEntry& e) {
   if (auto zf = degenerate_cell_centre(s, v)) z = *zf;
   if (s.options.encroaching != MeshOptions::Encroaching::All) {
     // Steiner mode: find from the in-region part of the zone whether z leaves the region (see above), before
-    // computing a zone that may be huge. Same answers as below: encroached subsegments first (Rule 1), then the
-    // crossed subfacets, split when z encroaches them (Rule 2), else given the paper's test (eager).
-    std::vector<std::array<Index, 4>> crossed;
-    std::vector<std::array<Index, 3>> segments;
-    conflict_zone_in_region(s, z, c, crossed, segments);
+    // computing a zone that may be huge. z encroaches subsegments -> Rule 1 (first bullet). Else z left the domain
+    // through subfacets: those z encroaches are split (Rule 2 with the point z); the others get the paper's test
+    // (split when any vertex encroaches them: with no encroached subfacet every circumcentre lies in the domain)
+    // and c is tried again; from c's third attempt on they are split too (cheese.off: the encroached subfacet is
+    // not always one that z crosses). When z leaves nothing, the part is the whole zone, so the general path below
+    // finds no subfacet inside it.
+    ConflictZone part;
+    const std::vector<std::array<Index, 4>> crossed = conflict_zone_in_region(s, z, c, part.cells);
     if (!crossed.empty()) {
-      for (const auto& sg : segments) s.subsegment_queue.push_back({sg[0], sg[1], sg[2], true});
-      if (segments.empty()) {
-        for (const auto& f : crossed) {
-          if (strictly_encroaches(s.kpoint(f[1]), s.kpoint(f[2]), s.kpoint(f[3]), z) || e.attempts >= 2)
-            s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, true, to_point3(z), true});
-          else
-            s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, false, {}, false, 0, true});
-        }
+      Candidates cand;
+      collect_candidates(s, part, cand);
+      bool encroached = false;
+      for (const auto& sg : cand.subsegments) {
+        if (!strictly_encroaches(s.kpoint(sg[1]), s.kpoint(sg[2]), z)) continue;
+        s.subsegment_queue.push_back({sg[0], sg[1], sg[2], true});
+        encroached = true;
+      }
+      for (const auto& f : crossed) {
+        if (encroached) break;  // Rule 1 first
+        if (strictly_encroaches(s.kpoint(f[1]), s.kpoint(f[2]), s.kpoint(f[3]), z) || e.attempts >= 2)
+          s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, true, to_point3(z), true});
+        else
+          s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, false, {}, false, 0, true});
       }
       ++s.stats.num_rejected_circumcenters;
       if (e.attempts < 8) s.tet_queue.push_back({e.vertices, e.attempts + 1});
@@ -751,38 +749,19 @@ void process_tet(MeshState& s, const TetEntry& e) {
   if (!rejected) {
     // Second bullet: z encroaches subfacets (or its insertion would remove one) -> Rule 2 on the subfacet that
     // holds z's projection (process_subfacet applies Lemma 3.5 with the point z).
-    const bool lazy = s.options.encroaching != MeshOptions::Encroaching::All;
-    std::vector<std::array<Index, 4>> destroyed, crossed;
+    std::vector<std::array<Index, 4>> destroyed;
     for (const Facet3& f : cz.internal) {
       Index ids[3];
       for (int k = 0; k < 3; ++k) ids[k] = f.first->vertex((f.second + 1 + k) & 3)->info();
       if (ids[0] == kNoIndex || ids[1] == kNoIndex || ids[2] == kNoIndex) continue;
       const Index facet = subfacet_of(s, ids[0], ids[1], ids[2]);
-      if (facet == kNoIndex) continue;
-      if (lazy && !strictly_encroaches(s.kpoint(ids[0]), s.kpoint(ids[1]), s.kpoint(ids[2]), z))
-        crossed.push_back({facet, ids[0], ids[1], ids[2]});
-      else
-        destroyed.push_back({facet, ids[0], ids[1], ids[2]});
+      if (facet != kNoIndex) destroyed.push_back({facet, ids[0], ids[1], ids[2]});
     }
     for (const auto& f : cand.subfacets) {
       if (strictly_encroaches(s.kpoint(f[1]), s.kpoint(f[2]), s.kpoint(f[3]), z)) destroyed.push_back(f);
     }
     for (const auto& f : destroyed) {
       s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, true, to_point3(z), true});
-      rejected = true;
-    }
-    // Encroaching::Steiner: z left the domain through subfacets it does not encroach. That happens only where a
-    // vertex encroaches a subfacet nearby (with no encroached subfacet every circumcentre lies in the domain), so
-    // first those crossed subfacets get the paper's test (split when any vertex encroaches them) and c is tried
-    // again; from c's third attempt on they are split as the paper's mode splits every subfacet z's zone destroys
-    // (cheese.off: the encroached subfacet is not always one that z crosses).
-    if (!rejected && !crossed.empty()) {
-      for (const auto& f : crossed) {
-        if (e.attempts < 2)
-          s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, false, {}, false, 0, true});
-        else
-          s.subfacet_queue.push_back({f[0], {f[1], f[2], f[3]}, true, to_point3(z), true});
-      }
       rejected = true;
     }
   }
