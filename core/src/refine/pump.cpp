@@ -817,15 +817,15 @@ void pump_slivers(MeshState& s) {
 }
 
 std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices) {
-  // The bad cells (below the sliver angle, in the domain) among the stars of `vertices`, worst first.
+  // The bad cells (below the sliver angle, in the domain) among the stars of `around`, worst first.
   struct Bad {
     double angle;
     std::array<Index, 4> ids;
   };
   std::vector<Bad> bad;
-  auto collect = [&]() {
+  auto collect = [&](const std::vector<Index>& around) {
     std::vector<Ch3> cells;
-    for (const Index v : vertices) s.tr.incident_cells(s.vertices[v].handle, std::back_inserter(cells));
+    for (const Index v : around) s.tr.incident_cells(s.vertices[v].handle, std::back_inserter(cells));
     std::sort(cells.begin(), cells.end());
     cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
     bad.clear();
@@ -840,10 +840,22 @@ std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices) {
     });
   };
   std::size_t moves = 0, num_retiled = 0, num_retile_failures = 0;
-  std::vector<Index> touched;
+  std::vector<Index> touched, changed;
+  // A vertex's walk, kept until a move changes its star (as pump_slivers' dirty flags): a vertex of several bad
+  // cells is walked once, not once per cell (pinion: most of the time pumping took went to such repeats).
+  std::unordered_map<Index, PumpChoice> walks;
+  auto walk = [&](Index v) -> const PumpChoice& {
+    auto it = walks.find(v);
+    if (it == walks.end()) it = walks.emplace(v, best_weight(s, v)).first;
+    return it->second;
+  };
+  // The second pass looks only at the stars the first pass's moves changed: every other cell was there, with the
+  // same neighbours, when the first pass (or pump_slivers before it) tried its vertices.
+  std::vector<Index> around = vertices;
   constexpr int kMaxPasses = 2;
-  for (int pass = 0; pass < kMaxPasses; ++pass) {
-    collect();
+  for (int pass = 0; pass < kMaxPasses && !around.empty(); ++pass) {
+    collect(around);
+    changed.clear();
     std::size_t pass_moves = 0;
     for (const Bad& b : bad) {
       Ch3 c;
@@ -851,7 +863,7 @@ std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices) {
       Index best_v = kNoIndex;
       PumpChoice best;
       for (const Index v : b.ids) {
-        const PumpChoice choice = best_weight(s, v);
+        const PumpChoice& choice = walk(v);
         if (choice.improves && (best_v == kNoIndex || better(choice.best, best.best))) best = choice, best_v = v;
       }
       if (best_v == kNoIndex) continue;
@@ -859,12 +871,18 @@ std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices) {
       if (apply_weight(s, best_v, best.weight, best.current, &touched, &num_retiled, &num_retile_failures)) {
         ++pass_moves;
         ++s.stats.num_pump_moves;
+        for (const Index t : touched) walks.erase(t);
+        changed.insert(changed.end(), touched.begin(), touched.end());
       } else {
         ++s.stats.num_pump_rejected;
+        walks[best_v].improves = false;  // the same walk would be refused again
       }
     }
     moves += pass_moves;
-    if (pass_moves == 0) break;
+    std::sort(changed.begin(), changed.end());
+    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    around.swap(changed);
+    walks.clear();
   }
   if (num_retile_failures)
     s.log_line("pumping: " + std::to_string(num_retile_failures) + " facet triangulations not retiled (bug)");
