@@ -7,7 +7,12 @@
 //
 // Circumcentre relative to p0, with a = p1 - p0, b = p2 - p0, c = p3 - p0:
 //   x = (|a|^2 (b x c) + |b|^2 (c x a) + |c|^2 (a x b)) / (2 a . (b x c)),  R = |x|.
+// For a nearly flat tetrahedron (|a . (b x c)| below 1e-10 of the longest edge cubed) rounding makes that quotient
+// meaningless and dependent on the vertex order (joint.off: a flat cell on a tilted facet measured 2.24 in one
+// order, below 2 in another, 1.59 exactly), so R^2 is then computed in exact rational arithmetic.
 #include "qualmesh/quality.h"
+
+#include <CGAL/Exact_rational.h>
 
 #include <algorithm>
 #include <cmath>
@@ -26,6 +31,28 @@ Vec cross(const Vec& a, const Vec& b) {
 double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
 
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+// Circumradius of a tetrahedron whose points are exact (doubles), in exact arithmetic: see the file comment.
+double exact_circumradius(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
+  using Q = CGAL::Exact_rational;
+  using QVec = std::array<Q, 3>;
+  auto qsub = [](const Point3& u, const Point3& v) -> QVec {
+    return QVec{Q(u[0]) - Q(v[0]), Q(u[1]) - Q(v[1]), Q(u[2]) - Q(v[2])};
+  };
+  auto qdot = [](const QVec& u, const QVec& v) -> Q { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  auto qcross = [](const QVec& u, const QVec& v) -> QVec {
+    return QVec{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  };
+  const QVec a = qsub(p1, p0), b = qsub(p2, p0), c = qsub(p3, p0);
+  const QVec bc = qcross(b, c), ca = qcross(c, a), ab = qcross(a, b);
+  const Q det = qdot(a, bc);
+  if (det == 0) return std::numeric_limits<double>::infinity();
+  const Q sa = qdot(a, a), sb = qdot(b, b), sc = qdot(c, c);
+  const QVec num{sa * bc[0] + sb * ca[0] + sc * ab[0], sa * bc[1] + sb * ca[1] + sc * ab[1],
+                 sa * bc[2] + sb * ca[2] + sc * ab[2]};
+  const Q sq_radius = qdot(num, num) / (Q(4) * det * det);
+  return std::sqrt(CGAL::to_double(sq_radius));
+}
 
 // Interior dihedral angle, in degrees, at edge (a, b) between faces (a, b, c) and (a, b, d).
 double dihedral_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
@@ -75,6 +102,8 @@ TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, con
   const double inf = std::numeric_limits<double>::infinity();
   if (det == 0) {
     q.circumradius = inf;
+  } else if (std::fabs(det) < 1e-10 * q.longest_edge * q.longest_edge * q.longest_edge) {
+    q.circumradius = exact_circumradius(p0, p1, p2, p3);
   } else {
     const Vec bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
     const double sa = dot(a, a), sb = dot(b, b), sc = dot(c, c);
