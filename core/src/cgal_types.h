@@ -68,6 +68,10 @@ struct CellInfo {
   // For a cell of unknown region: the region of the destroyed cell it replaced across its outer face, used when no
   // known neighbour reaches its component (refine/regions.cpp).
   int guess = kUnknownRegion;
+  // The cell's smallest dihedral angle in degrees, once measured (negative: not yet; refine_state.h
+  // cell_min_dihedral_deg). A cell's vertices never move (a weight change replaces the cells around the vertex), so
+  // it stays valid as long as the cell exists.
+  double min_dihedral_deg = -1;
 };
 
 using Vb3 = WithTimeStamp<

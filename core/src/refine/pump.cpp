@@ -164,23 +164,65 @@ class StarEvaluator {
   // `incremental`: the caller (the walk) checks hidden vertices and regions itself as cells join the zone.
   StarScore score(const std::vector<Ch3>& cells, const std::vector<LinkFacet>& link,
                   const std::vector<const CellElements*>& elements, bool incremental = false) {
+    if (volume_vertex_ && !incremental) {
+      int region = kUnknownRegion;
+      for (const Ch3& c : cells) {
+        const int r = c->info().region;
+        if (region == kUnknownRegion) region = r;
+        if (r != region || r < 0) {
+          StarScore result;
+          result.refusal = Refusal::Region;
+          return result;
+        }
+      }
+    }
+    StarScore result = quality(link);
+    check(cells, link, elements, incremental, &result);
+    return result;
+  }
+
+  // The first half of score(): the new cells' angles and radius-edge ratios only (memoised per link facet, cheap),
+  // enough to compare stars (better(), keeps_radius_edge()); `valid` stays false until check() runs.
+  StarScore quality(const std::vector<LinkFacet>& link) {
     StarScore result;
+    invalid_for_now_ = false;
+    for (const LinkFacet& f : link) {
+      Index ids[3];
+      bool infinite = false;
+      for (int k = 0; k < 3; ++k) {
+        ids[k] = f.inner->vertex((f.index + 1 + k) & 3)->info();
+        infinite = infinite || ids[k] == kNoIndex;
+      }
+      if (infinite) continue;
+      const Key3 key = sorted3(ids[0], ids[1], ids[2]);
+      // The new cell (v, f) does not depend on the weight: measured once per walk.
+      auto it = memo_.find(key);
+      if (it == memo_.end()) it = memo_.emplace(key, measure(f)).first;
+      const NewCell& cell = it->second;
+      if (!cell.positive) invalid_for_now_ = true;
+      if (!cell.in_domain) continue;
+      result.min_dihedral_deg = std::min(result.min_dihedral_deg, cell.min_dihedral_deg);
+      result.sliver_deficit_deg += std::max(0.0, s_.options.sliver_angle_deg - cell.min_dihedral_deg);
+      if (cell.radius_edge > s_.options.radius_edge_bound) {
+        // Rule 3's promise stands: above rho0 only where an acute input angle forces the shortest edge.
+        if (!cell.touches_acute) invalid_for_now_ = true;
+        result.max_radius_edge = std::max(result.max_radius_edge, cell.radius_edge);
+      }
+    }
+    return result;
+  }
+
+  // The second half of score(), after quality() on the same link: hidden vertices, lost subsegments and
+  // subfacets, flat or inverted cells; sets `valid`, or `refusal` and `final`.
+  void check(const std::vector<Ch3>& cells, const std::vector<LinkFacet>& link,
+             const std::vector<const CellElements*>& elements, bool incremental, StarScore* score) {
+    StarScore& result = *score;
     link_faces_.clear();
     link_edges_.clear();
     link_vertices_.clear();
-    int region = kUnknownRegion;
-    for (const Ch3& c : cells) {
-      if (!volume_vertex_ || incremental) break;
-      const int r = c->info().region;
-      if (region == kUnknownRegion) region = r;
-      if (r != region || r < 0) {
-        result.refusal = Refusal::Region;
-        return result;
-      }
-    }
-    bool invalid_for_now = false;
     bool has_elements = false;
-    for (const CellElements* e : elements) has_elements = has_elements || !e->subsegments.empty() || !e->subfacets.empty();
+    for (const CellElements* e : elements)
+      has_elements = has_elements || !e->subsegments.empty() || !e->subfacets.empty();
     for (const LinkFacet& f : link) {
       Index ids[3];
       bool infinite = false;
@@ -195,21 +237,7 @@ class StarEvaluator {
         if (a != kNoIndex && b != kNoIndex) link_edges_.insert({std::min(a, b), std::max(a, b)});
       }
       if (infinite) continue;
-      const Key3 key = sorted3(ids[0], ids[1], ids[2]);
-      if (has_elements) link_faces_.insert(key);
-      // The new cell (v, f) does not depend on the weight: measured once per walk.
-      auto it = memo_.find(key);
-      if (it == memo_.end()) it = memo_.emplace(key, measure(f)).first;
-      const NewCell& cell = it->second;
-      if (!cell.positive) invalid_for_now = true;
-      if (!cell.in_domain) continue;
-      result.min_dihedral_deg = std::min(result.min_dihedral_deg, cell.min_dihedral_deg);
-      result.sliver_deficit_deg += std::max(0.0, s_.options.sliver_angle_deg - cell.min_dihedral_deg);
-      if (cell.radius_edge > s_.options.radius_edge_bound) {
-        // Rule 3's promise stands: above rho0 only where an acute input angle forces the shortest edge.
-        if (!cell.touches_acute) invalid_for_now = true;
-        result.max_radius_edge = std::max(result.max_radius_edge, cell.radius_edge);
-      }
+      if (has_elements) link_faces_.insert(sorted3(ids[0], ids[1], ids[2]));
     }
     // No vertex hidden.
     std::sort(link_vertices_.begin(), link_vertices_.end());
@@ -219,7 +247,7 @@ class StarEvaluator {
         const Index id = c->vertex(k)->info();
         if (id != kNoIndex && id != v_ && !std::binary_search(link_vertices_.begin(), link_vertices_.end(), id)) {
           result.refusal = Refusal::Hidden;
-          return result;
+          return;
         }
       }
     // Conformity (Section 7.2, Theorem 7.2). Every subsegment of the zone stays an edge. The subfacets of an input
@@ -235,7 +263,7 @@ class StarEvaluator {
         if (seg[0] == v_ || seg[1] == v_) continue;  // v's edges to link vertices all exist
         if (!link_edges_.count(seg)) {
           result.refusal = Refusal::LostSubsegment;
-          return result;
+          return;
         }
       }
       for (std::size_t i = 0; i < e->subfacets.size(); ++i) {
@@ -254,7 +282,7 @@ class StarEvaluator {
         const Index facet = e->subfacet_facets[i];
         if (!vertex_on_facet(s_, v_, facet)) {
           result.refusal = Refusal::LostSubfacet;
-          return result;
+          return;
         }
         lost_subfacets_.push_back({facet, t});
       }
@@ -264,15 +292,14 @@ class StarEvaluator {
     if (!lost_subfacets_.empty() && !facets_retiled(elements)) {
       result.final = false;
       result.refusal = Refusal::FacetNotRetiled;
-      return result;
+      return;
     }
-    if (invalid_for_now) {
+    if (invalid_for_now_) {
       result.final = false;
       result.refusal = Refusal::BadCell;
-      return result;
+      return;
     }
     result.valid = true;
-    return result;
   }
 
   // The subfacets (facet, sorted ids) of the zone last scored that are not faces of the new star (empty: the
@@ -340,6 +367,7 @@ class StarEvaluator {
   Index v_;
   KPoint3 p_;
   bool volume_vertex_ = false;
+  bool invalid_for_now_ = false;  // quality(): a new cell flat, inverted, or above rho0 off acute angles
   std::unordered_map<Key3, NewCell, KeyHash> memo_;
   std::unordered_set<Key3, KeyHash> link_faces_;
   std::unordered_set<Key2, KeyHash> link_edges_;
@@ -370,8 +398,7 @@ struct PumpChoice {
 // The score of cells a move destroys (in-domain ones): their smallest dihedral angle and sliver deficit.
 void add_destroyed_cell(const MeshState& s, Ch3 c, StarScore* score) {
   if (s.tr.is_infinite(c) || c->info().region < 0) return;
-  const double angle = tet_min_dihedral_deg(s.point(c->vertex(0)->info()), s.point(c->vertex(1)->info()),
-                                            s.point(c->vertex(2)->info()), s.point(c->vertex(3)->info()));
+  const double angle = cell_min_dihedral_deg(s, c);
   score->min_dihedral_deg = std::min(score->min_dihedral_deg, angle);
   score->sliver_deficit_deg += std::max(0.0, s.options.sliver_angle_deg - angle);
 }
@@ -493,22 +520,27 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
     const double w_next = next_event(&n2, &through2);
     const double hi = std::min(w_next, cap);
     if (hi > w) {
-      const StarScore sc = evaluator.score(cells, link_vector(), element_ptrs(), true);
-      if (!sc.valid && sc.final) {  // the zone only grows: a hidden vertex or a lost element stays so
-        choice.end = WalkEnd::Refused;
-        choice.refusal = sc.refusal;
-        break;
-      }
-      if (target) {
-        if (sc.valid && in_zone.count(*target) && better(sc, destroyed) && keeps_radius_edge(s, sc, current) &&
-            (!found || better(sc, choice.best))) {
+      // Only a star that would be chosen is checked in full (the link's edges and faces against the zone's
+      // subsegments and subfacets, the expensive half of the score). A star skipped here may be finally invalid
+      // (a lost element), which ends the walk when found; the walk then ends at the next star that would be
+      // chosen, found invalid for the same reason (the zone only grows), and picks the same weight.
+      const std::vector<LinkFacet> link_now = link_vector();
+      StarScore sc = evaluator.quality(link_now);
+      const bool wanted =
+          target ? in_zone.count(*target) && better(sc, destroyed) && (!found || better(sc, choice.best))
+                 : better(sc, choice.best);
+      if (wanted && keeps_radius_edge(s, sc, current)) {
+        evaluator.check(cells, link_now, element_ptrs(), true, &sc);
+        if (!sc.valid && sc.final) {  // the zone only grows: a hidden vertex or a lost element stays so
+          choice.end = WalkEnd::Refused;
+          choice.refusal = sc.refusal;
+          break;
+        }
+        if (sc.valid) {
           choice.best = sc;
           choice.weight = 0.5 * (w + hi);
           found = true;
         }
-      } else if (sc.valid && better(sc, choice.best) && keeps_radius_edge(s, sc, current)) {
-        choice.best = sc;
-        choice.weight = 0.5 * (w + hi);
       }
     }
     n = n2;
@@ -533,7 +565,7 @@ bool retile_facets(MeshState& s, Index v, const std::vector<std::pair<Index, Key
   const Vh3 v3 = s.vertices[v].handle;
   for (const Index facet : facets) {
     FacetMesh& fm = s.facets[facet];
-    const Vh2 v2 = fm.find(v);
+    const Vh2 v2 = facet_vertex_handle(s, facet, v);
     if (v2 == Vh2()) return false;
     bool flipped = true;
     for (int round = 0; flipped && round < 1000; ++round) {
@@ -832,7 +864,7 @@ std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices) {
     for (const Ch3& c : cells) {
       if (s.tr.is_infinite(c) || c->info().region < 0) continue;
       std::array<Index, 4> ids{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
-      const double angle = tet_min_dihedral_deg(s.point(ids[0]), s.point(ids[1]), s.point(ids[2]), s.point(ids[3]));
+      const double angle = cell_min_dihedral_deg(s, c);
       if (angle < s.options.sliver_angle_deg) bad.push_back({angle, ids});
     }
     std::sort(bad.begin(), bad.end(), [](const Bad& a, const Bad& b) {

@@ -19,6 +19,7 @@
 
 #include "cgal_types.h"
 #include "qualmesh/mesher.h"
+#include "qualmesh/quality.h"
 #include "local_feature_size.h"
 #include "refine/complex.h"
 
@@ -34,11 +35,13 @@ struct VertexRecord {
   Index prev = kNoIndex;  // Segment: neighbours along the host segment (an endpoint id or a Segment vertex id)
   Index next = kNoIndex;
   Vh3 handle;
+  Vh2 facet_handle;  // Facet: the vertex in its host facet's 2D triangulation (FacetMesh's map holds the others)
 };
 
 // One input facet's subfacets: the Delaunay triangulation of the vertices on the facet (Section 3.2) in the facet's
 // plane frame, constrained by its subsegments so that its in-domain triangles stay defined while subsegments are
-// encroached. `handles` maps a vertex id to its 2D vertex.
+// encroached. `handle_map` maps the id of a vertex on a segment or an input vertex to its 2D vertex; a facet vertex
+// keeps its own in VertexRecord::facet_handle (facet_vertex_handle() looks in the right place).
 struct FacetMesh {
   Cdt2 cdt;
   std::unordered_map<Index, Vh2> handle_map;
@@ -128,6 +131,24 @@ struct MeshState {
   const Point3& point(Index v) const { return vertices[v].point; }
   KPoint3 kpoint(Index v) const { return to_kpoint(vertices[v].point); }
 };
+
+// Smallest dihedral angle of finite cell c in degrees, measured once per cell (CellInfo::min_dihedral_deg): the
+// pumping passes and sliver insertion rescan every cell many times.
+inline double cell_min_dihedral_deg(const MeshState& s, Ch3 c) {
+  double& angle = c->info().min_dihedral_deg;
+  if (angle < 0)
+    angle = tet_min_dihedral_deg(s.point(c->vertex(0)->info()), s.point(c->vertex(1)->info()),
+                                 s.point(c->vertex(2)->info()), s.point(c->vertex(3)->info()));
+  return angle;
+}
+
+// Vertex v in the 2D triangulation of `facet` (null when v is not on it). A facet vertex keeps its handle in its
+// record; the others (on segments, input vertices: on several facets) are in the facet's map.
+inline Vh2 facet_vertex_handle(const MeshState& s, Index facet, Index v) {
+  const VertexRecord& r = s.vertices[v];
+  if (r.kind == VertexKind::Facet) return r.host == facet ? r.facet_handle : Vh2();
+  return s.facets[facet].find(v);
+}
 
 // --- complex / vertices (subsegments.cpp) ---
 // Is vertex v on segment s (symbolically)?

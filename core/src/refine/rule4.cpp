@@ -178,7 +178,7 @@ bool is_sliver(const MeshState& s, Ch3 c, double* min_dihedral_deg) {
   if (s.tr.is_infinite(c) || c->info().region < 0) return false;
   const Point3 &p0 = s.point(c->vertex(0)->info()), &p1 = s.point(c->vertex(1)->info()),
                &p2 = s.point(c->vertex(2)->info()), &p3 = s.point(c->vertex(3)->info());
-  const double angle = tet_min_dihedral_deg(p0, p1, p2, p3);
+  const double angle = cell_min_dihedral_deg(s, c);
   if (min_dihedral_deg) *min_dihedral_deg = angle;
   if (!(angle < s.options.sliver_angle_deg)) return false;
   return tet_radius_edge(p0, p1, p2, p3) <= s.options.radius_edge_bound;

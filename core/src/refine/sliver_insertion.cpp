@@ -240,7 +240,7 @@ std::vector<Bad> slivers_away_from_acute(const MeshState& s) {
     if (c->info().region < 0) continue;
     const std::array<Index, 4> ids{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(),
                                    c->vertex(3)->info()};
-    const double angle = tet_min_dihedral_deg(s.point(ids[0]), s.point(ids[1]), s.point(ids[2]), s.point(ids[3]));
+    const double angle = cell_min_dihedral_deg(s, c);
     if (angle < s.options.sliver_angle_deg && !tet_touches_acute_angle(s, ids)) bad.push_back({angle, ids});
   }
   std::sort(bad.begin(), bad.end(),

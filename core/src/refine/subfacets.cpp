@@ -154,7 +154,8 @@ void build_facet_meshes(MeshState& s) {
 
 bool is_subfacet(const MeshState& s, Index facet, Index a, Index b, Index c) {
   const FacetMesh& fm = s.facets[facet];
-  const Vh2 va = fm.find(a), vb = fm.find(b), vc = fm.find(c);
+  const Vh2 va = facet_vertex_handle(s, facet, a), vb = facet_vertex_handle(s, facet, b),
+            vc = facet_vertex_handle(s, facet, c);
   if (va == Vh2() || vb == Vh2() || vc == Vh2()) return false;
   Fh2 fh;
   return fm.cdt.is_face(va, vb, vc, fh) && fh->info().in_domain();
@@ -212,7 +213,7 @@ void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::arra
   Vh2 vh;
   if (r.kind == VertexKind::Segment) {
     // Symbolically on the constrained edge between its chain neighbours: split that edge.
-    const Vh2 a = fm.find(r.prev), b = fm.find(r.next);
+    const Vh2 a = facet_vertex_handle(s, facet, r.prev), b = facet_vertex_handle(s, facet, r.next);
     Fh2 fh;
     int i = 0;
     if (a != Vh2() && b != Vh2() && fm.cdt.is_edge(a, b, fh, i)) {
@@ -240,13 +241,14 @@ void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::arra
     vh = fm.cdt.insert(p, hint);
   }
   vh->info() = w;
-  fm.handle_map[w] = vh;
+  if (s.vertices[w].kind == VertexKind::Facet) s.vertices[w].facet_handle = vh;
+  else fm.handle_map[w] = vh;
   update_star(s, facet, fm.cdt, vh, new_faces);
 }
 
 bool encroaches_in_facet_plane(const MeshState& s, Index facet, const std::array<Index, 3>& abc, Index w) {
-  const FacetMesh& fm = s.facets[facet];
-  const Vh2 va = fm.find(abc[0]), vb = fm.find(abc[1]), vc = fm.find(abc[2]), vw = fm.find(w);
+  auto handle = [&](Index v) { return facet_vertex_handle(s, facet, v); };
+  const Vh2 va = handle(abc[0]), vb = handle(abc[1]), vc = handle(abc[2]), vw = handle(w);
   if (va == Vh2() || vb == Vh2() || vc == Vh2() || vw == Vh2()) return true;  // not decidable in 2D: assume so
   return CGAL::side_of_bounded_circle(va->point(), vb->point(), vc->point(), vw->point()) == CGAL::ON_BOUNDED_SIDE;
 }
@@ -256,7 +258,7 @@ std::optional<std::array<Index, 3>> subfacet_containing_projection(const MeshSta
   const FacetMesh& fm = s.facets[facet];
   Cdt2::Locate_type lt;
   int li = 0;
-  const Vh2 hv = hint == kNoIndex ? Vh2() : fm.find(hint);
+  const Vh2 hv = hint == kNoIndex ? Vh2() : facet_vertex_handle(s, facet, hint);
   Fh2 fh = fm.cdt.locate(local_point(s, facet, p), lt, li, hv == Vh2() ? Fh2() : hv->face());
   if (fh == Fh2() || fm.cdt.is_infinite(fh) || !fh->info().in_domain()) return std::nullopt;
   return std::array<Index, 3>{fh->vertex(0)->info(), fh->vertex(1)->info(), fh->vertex(2)->info()};
@@ -266,7 +268,7 @@ bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p, Ind
   const FacetMesh& fm = s.facets[facet];
   Cdt2::Locate_type lt;
   int li = 0;
-  const Vh2 hv = hint == kNoIndex ? Vh2() : fm.find(hint);
+  const Vh2 hv = hint == kNoIndex ? Vh2() : facet_vertex_handle(s, facet, hint);
   Fh2 fh = fm.cdt.locate(local_point(s, facet, p), lt, li, hv == Vh2() ? Fh2() : hv->face());
   if (fh == Fh2()) return false;
   if (!fm.cdt.is_infinite(fh) && fh->info().in_domain()) return true;
@@ -280,7 +282,8 @@ bool facet_point_in_domain(const MeshState& s, Index facet, const Point3& p, Ind
 std::optional<std::array<Index, 2>> subsegment_towards(const MeshState& s, Index facet,
                                                       const std::array<Index, 3>& abc, const Point3& p) {
   const FacetMesh& fm = s.facets[facet];
-  const Vh2 va = fm.find(abc[0]), vb = fm.find(abc[1]), vc = fm.find(abc[2]);
+  auto handle = [&](Index v) { return facet_vertex_handle(s, facet, v); };
+  const Vh2 va = handle(abc[0]), vb = handle(abc[1]), vc = handle(abc[2]);
   Fh2 fh;
   if (va == Vh2() || vb == Vh2() || vc == Vh2() || !fm.cdt.is_face(va, vb, vc, fh)) return std::nullopt;
   const KPoint2 q = local_point(s, facet, p);
@@ -308,7 +311,8 @@ std::optional<std::array<Index, 2>> subsegment_towards(const MeshState& s, Index
 bool flip_subfacet_to_match(MeshState& s, Index facet, const std::array<Index, 3>& abc,
                             std::vector<std::array<Index, 3>>* new_faces, Index only_across_from) {
   FacetMesh& fm = s.facets[facet];
-  const Vh2 va = fm.find(abc[0]), vb = fm.find(abc[1]), vc = fm.find(abc[2]);
+  auto handle = [&](Index v) { return facet_vertex_handle(s, facet, v); };
+  const Vh2 va = handle(abc[0]), vb = handle(abc[1]), vc = handle(abc[2]);
   Fh2 fh;
   if (va == Vh2() || vb == Vh2() || vc == Vh2() || !fm.cdt.is_face(va, vb, vc, fh)) return false;
   for (int i = 0; i < 3; ++i) {
