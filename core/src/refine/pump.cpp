@@ -451,7 +451,10 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
     for (const auto& kv : link) out.push_back(kv.second);
     return out;
   };
+  // The subsegments and subfacets of the zone's cells, read when a star is checked (StarEvaluator::check): most
+  // stars of a walk are not worth checking (quality first), so cells joining the zone are read lazily.
   auto element_ptrs = [&]() {
+    while (element_store.size() < cells.size()) element_store.push_back(elements_of(s, cells[element_store.size()]));
     std::vector<const CellElements*> out;
     for (const auto& e : element_store) out.push_back(&e);
     return out;
@@ -496,7 +499,6 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
     in_zone.insert(n);
     if (target) add_destroyed_cell(s, n, &destroyed);
     cells.push_back(n);
-    element_store.push_back(elements_of(s, n));
     for (int i = 0; i < 4; ++i) {
       const Key3 k = key_of(n, i);
       auto it = link.find(k);
