@@ -123,7 +123,11 @@ TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, con
 }
 
 double tet_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
-  return tet_quality(p0, p1, p2, p3).min_dihedral_deg;
+  // The angles alone, as tet_quality() computes them (no circumradius: exact for a flat cell, and not needed).
+  const Point3* p[4] = {&p0, &p1, &p2, &p3};
+  double angle = 180;
+  for (const auto& e : kEdges) angle = std::min(angle, dihedral_deg(*p[e[0]], *p[e[1]], *p[e[2]], *p[e[3]]));
+  return angle;
 }
 
 double tet_radius_edge(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {

@@ -161,6 +161,16 @@ class StarEvaluator {
     volume_vertex_ = s.vertices[v].kind == VertexKind::Volume;
   }
 
+  // The vertex ids of link facet f (kNoIndex for the infinite vertex); true when one is infinite.
+  static bool link_facet_ids(const LinkFacet& f, Index ids[3]) {
+    bool infinite = false;
+    for (int k = 0; k < 3; ++k) {
+      ids[k] = f.inner->vertex((f.index + 1 + k) & 3)->info();
+      infinite = infinite || ids[k] == kNoIndex;
+    }
+    return infinite;
+  }
+
   // `incremental`: the caller (the walk) checks hidden vertices and regions itself as cells join the zone.
   StarScore score(const std::vector<Ch3>& cells, const std::vector<LinkFacet>& link,
                   const std::vector<const CellElements*>& elements, bool incremental = false) {
@@ -188,11 +198,7 @@ class StarEvaluator {
     invalid_for_now_ = false;
     for (const LinkFacet& f : link) {
       Index ids[3];
-      bool infinite = false;
-      for (int k = 0; k < 3; ++k) {
-        ids[k] = f.inner->vertex((f.index + 1 + k) & 3)->info();
-        infinite = infinite || ids[k] == kNoIndex;
-      }
+      const bool infinite = link_facet_ids(f, ids);
       if (infinite) continue;
       const Key3 key = sorted3(ids[0], ids[1], ids[2]);
       // The new cell (v, f) does not depend on the weight: measured once per walk.
@@ -225,11 +231,7 @@ class StarEvaluator {
       has_elements = has_elements || !e->subsegments.empty() || !e->subfacets.empty();
     for (const LinkFacet& f : link) {
       Index ids[3];
-      bool infinite = false;
-      for (int k = 0; k < 3; ++k) {
-        ids[k] = f.inner->vertex((f.index + 1 + k) & 3)->info();
-        infinite = infinite || ids[k] == kNoIndex;
-      }
+      const bool infinite = link_facet_ids(f, ids);
       for (int k = 0; k < 3; ++k) {
         if (ids[k] != kNoIndex && !incremental) link_vertices_.push_back(ids[k]);
         if (!has_elements) continue;
