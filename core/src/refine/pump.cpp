@@ -556,11 +556,18 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
   return choice;
 }
 
+// Whether (a, m) and (m, b) are subsegments of one segment: a, m, b are collinear, whatever their rounded
+// coordinates say.
+bool consecutive_on_a_segment(const MeshState& s, Index a, Index m, Index b) {
+  const Index seg = subsegment_of(s, a, m);
+  return seg != kNoIndex && subsegment_of(s, m, b) == seg;
+}
+
 // After a move that changed subfacets (StarEvaluator::lost_subfacets): flips the 2D triangulation of each such
 // facet F to the new star. Raising v's weight lowers v's lifted point, so, as for an insertion, the 2D weighted
 // Delaunay triangulation of F's vertices is reached by flipping edges opposite v that are not locally regular; each
-// flip makes an edge vd that the 3D star has (the target). Returns false if some lost subfacet is left (a bug: the
-// move was checked to retile F).
+// flip makes an edge vd that the 3D star has (the target). Returns false if some lost subfacet is left, or a
+// subfacet at v is no 3D face (a bug: the move was checked to retile F).
 bool retile_facets(MeshState& s, Index v, const std::vector<std::pair<Index, Key3>>& lost) {
   std::vector<Index> facets;
   for (const auto& l : lost) facets.push_back(l.first);
@@ -595,6 +602,12 @@ bool retile_facets(MeshState& s, Index v, const std::vector<std::pair<Index, Key
         if (o1 == CGAL::COLLINEAR || o2 == CGAL::COLLINEAR || o1 == o2 || o3 == CGAL::COLLINEAR ||
             o4 == CGAL::COLLINEAR || o3 == o4)
           continue;
+        // The 2D points are rounded projections, so three consecutive vertices of one segment may pass the test
+        // above, and the 3D triangulation can have the edge vd over a flat triangle of them (outside the domain).
+        // Symbolically such a quadrilateral is not convex: the flip would make a triangle of collinear vertices.
+        if (consecutive_on_a_segment(s, v, x->info(), d->info()) ||
+            consecutive_on_a_segment(s, v, y->info(), d->info()))
+          continue;
         const FaceInfo2 info = fh->info();
         fm.cdt.flip(fh, i);
         auto nc = fm.cdt.incident_faces(v2), ndone = nc;
@@ -609,6 +622,20 @@ bool retile_facets(MeshState& s, Index v, const std::vector<std::pair<Index, Key
   }
   for (const auto& l : lost)
     if (is_subfacet(s, l.first, l.second[0], l.second[1], l.second[2])) return false;
+  // And every subfacet at v on those facets is a face of the 3D triangulation.
+  for (const Index facet : facets) {
+    const FacetMesh& fm = s.facets[facet];
+    const Vh2 v2 = facet_vertex_handle(s, facet, v);
+    auto fc = fm.cdt.incident_faces(v2), done = fc;
+    do {
+      if (fm.cdt.is_infinite(fc) || !fc->info().in_domain()) continue;
+      Ch3 cell;
+      int i, j, k;
+      if (!s.tr.is_facet(s.vertices[fc->vertex(0)->info()].handle, s.vertices[fc->vertex(1)->info()].handle,
+                         s.vertices[fc->vertex(2)->info()].handle, cell, i, j, k))
+        return false;
+    } while (++fc != done);
+  }
   return true;
 }
 

@@ -374,20 +374,24 @@ void insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& c
     std::sort(kept_edges.begin(), kept_edges.end());
     std::sort(kept_faces.begin(), kept_faces.end());
   }
-  if (region < 0 && s.regions_known) {
-    outer.reserve(cz.boundary.size());
-    for (const Facet3& f : cz.boundary) {
-      const Ch3 n = f.first->neighbor(f.second);
-      const int r = f.first->info().region != kUnknownRegion ? f.first->info().region : f.first->info().guess;
-      outer.push_back({n, n->index(f.first), r});
-    }
+  // Across each outer face of the hole: the outside cell and its mirror index. After insertion the new cell is
+  // the outside cell's neighbour there: the star of the new vertex without a walk around it (incident_cells).
+  const bool want_guess = region < 0 && s.regions_known;
+  outer.reserve(cz.boundary.size());
+  for (const Facet3& f : cz.boundary) {
+    const Ch3 n = f.first->neighbor(f.second);
+    const int r = !want_guess                              ? kUnknownRegion
+                  : f.first->info().region != kUnknownRegion ? f.first->info().region
+                                                             : f.first->info().guess;
+    outer.push_back({n, n->index(f.first), r});
   }
   const Vh3 vh = s.tr.insert_in_hole(wp, cz.cells.begin(), cz.cells.end(), cz.boundary.front().first,
                                      cz.boundary.front().second);
   vh->info() = id;
   s.vertices[id].handle = vh;
   ++s.stats.num_steiner_vertices;
-  for (const Outer& o : outer) o.neighbor->neighbor(o.mirror)->info().guess = o.region;
+  if (want_guess)
+    for (const Outer& o : outer) o.neighbor->neighbor(o.mirror)->info().guess = o.region;
   if (s.tr.number_of_vertices() >= s.options.max_vertices) s.vertex_limit_reached = true;
 
   VertexRecord& r = s.vertices[id];
@@ -407,7 +411,8 @@ void insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& c
 
   // Cells of the star: region and Rule 3.
   std::vector<Ch3> star;
-  s.tr.incident_cells(vh, std::back_inserter(star));
+  star.reserve(outer.size());
+  for (const Outer& o : outer) star.push_back(o.neighbor->neighbor(o.mirror));
   for (const Ch3& c : star) {
     if (s.tr.is_infinite(c)) {
       c->info().region = s.regions_known ? kOutsideRegion : kUnknownRegion;
