@@ -249,8 +249,9 @@ std::vector<Bad> slivers_away_from_acute(const MeshState& s) {
 }
 
 // Inserts the best candidate of `c` that removes at least `min_removed` cells below the sliver angle; otherwise
-// returns the furthest refusal among the candidates.
-Refusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed) {
+// returns the furthest refusal among the candidates. `num_in_balls` counts the boundary elements whose diametral
+// balls hold the inserted point.
+Refusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std::size_t* num_in_balls) {
   Candidate best, trial;
   bool found = false;
   Refusal furthest = Refusal::NotInConflict;
@@ -281,15 +282,15 @@ Refusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed) {
     s.sq_nearest[u] = std::min(s.sq_nearest[u], d);
     s.sq_nearest[w] = std::min(s.sq_nearest[w], d);
   }
-  // The checks above leave Rules 1-3 nothing to do; anything queued is dropped (the triangulation is weighted now,
-  // and the engine's rules are unweighted).
-  const std::size_t queued = s.subsegment_queue.size() + s.subfacet_queue.size() + s.tet_queue.size();
-  if (queued) {
-    s.log_line("sliver insertion: " + std::to_string(queued) + " queued refinement entries dropped (unexpected)");
-    s.subsegment_queue.clear();
-    s.subfacet_queue.clear();
-    s.tet_queue.clear();
-  }
+  // The engine's insertion queued the zone's subsegments and subfacets whose diametral balls hold p (allowed above:
+  // they stay edges and faces, checked) and, never expected, new cells that Rule 3 would split. Both are dropped:
+  // the triangulation is weighted now, and the engine's rules are unweighted.
+  *num_in_balls += s.subsegment_queue.size() + s.subfacet_queue.size();
+  if (!s.tet_queue.empty())
+    s.log_line("sliver insertion: " + std::to_string(s.tet_queue.size()) + " new cells queued by Rule 3 (unexpected)");
+  s.subsegment_queue.clear();
+  s.subfacet_queue.clear();
+  s.tet_queue.clear();
   star.push_back(w);
   pump_around(s, star);
   return Refusal::None;
@@ -312,7 +313,7 @@ void insert_at_slivers(MeshState& s) {
   std::size_t total = 0, refused = 0;
   bool budget_spent = false;
   for (int round = 0; round < kMaxRounds && !budget_spent; ++round) {
-    std::size_t inserted = 0;
+    std::size_t inserted = 0, in_balls = 0;
     refused = 0;
     std::array<std::size_t, std::size_t(Refusal::None)> why{};
     const std::vector<Bad> bad = slivers_away_from_acute(s);
@@ -325,7 +326,7 @@ void insert_at_slivers(MeshState& s) {
       if (!s.tr.is_cell(s.vertices[b.ids[0]].handle, s.vertices[b.ids[1]].handle, s.vertices[b.ids[2]].handle,
                         s.vertices[b.ids[3]].handle, c))
         continue;  // gone with an earlier insertion
-      const Refusal r = insert_at_sliver(s, c, std::size_t(std::max(1, 3 - round)));
+      const Refusal r = insert_at_sliver(s, c, std::size_t(std::max(1, 3 - round)), &in_balls);
       if (r == Refusal::None) {
         ++inserted;
       } else {
@@ -336,7 +337,9 @@ void insert_at_slivers(MeshState& s) {
     total += inserted;
     s.log_line("sliver insertion round " + std::to_string(round + 1) + ": " + std::to_string(bad.size()) +
                " tets below the sliver angle away from acute angles, " + std::to_string(inserted) +
-               " points inserted, " + std::to_string(refused) + " without an acceptable point" +
+               " points inserted (" + std::to_string(in_balls) +
+               " subsegments and subfacets kept with a point in their diametral ball), " + std::to_string(refused) +
+               " without an acceptable point" +
                (budget_spent ? " (vertex budget spent)" : "") + refusal_summary(why));
     if (inserted == 0 && round >= 2) break;  // the rounds asking for more than one removal may insert nothing
   }
