@@ -17,6 +17,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 namespace qualmesh {
 namespace {
@@ -54,17 +56,54 @@ double exact_circumradius(const Point3& p0, const Point3& p1, const Point3& p2, 
   return std::sqrt(CGAL::to_double(sq_radius));
 }
 
-// Interior dihedral angle, in degrees, at edge (a, b) between faces (a, b, c) and (a, b, d).
-double dihedral_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+// The dihedral angle at edge (a, b) between faces (a, b, c) and (a, b, d) as the pair (|n1 x n2|, n1 . n2) whose
+// atan2 it is (see the file comment): sin_part >= 0, so the angle is in [0, 180] degrees.
+struct AnglePair {
+  double sin_part, cos_part;
+};
+AnglePair dihedral_pair(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   const Vec e = sub(b, a), u = sub(c, a), v = sub(d, a);
   const Vec n1 = cross(e, u), n2 = cross(e, v);
-  const double sin_part = norm(e) * std::fabs(dot(e, cross(u, v)));
-  const double cos_part = dot(n1, n2);
-  return std::atan2(sin_part, cos_part) * kRadToDeg;
+  return {norm(e) * std::fabs(dot(e, cross(u, v))), dot(n1, n2)};
+}
+
+double to_deg(const AnglePair& a) { return std::atan2(a.sin_part, a.cos_part) * kRadToDeg; }
+
+// Interior dihedral angle, in degrees, at edge (a, b) between faces (a, b, c) and (a, b, d).
+double dihedral_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return to_deg(dihedral_pair(a, b, c, d));
 }
 
 // Edges (i, j) with the opposite pair (k, l), in the order of tet_dihedral_angles_deg.
 const int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+
+// The smallest and largest of the six dihedral angles, in degrees, with two atan2 calls instead of six: for angles
+// x = atan2(s1, c1) and y = atan2(s2, c2) in (0, pi) (s1, s2 > 0), x - y is in (-pi, pi), so x < y exactly when
+// sin(x - y) < 0, i.e. s1 c2 - c1 s2 < 0. A flat tetrahedron (s = 0: angles of exactly 0 or 180 degrees, whose
+// difference pi the test cannot see) or a non-finite pair falls back to measuring all six.
+std::pair<double, double> min_max_dihedral_deg(const Point3* const p[4]) {
+  AnglePair a[6];
+  bool plain = true;
+  for (int i = 0; i < 6; ++i) {
+    a[i] = dihedral_pair(*p[kEdges[i][0]], *p[kEdges[i][1]], *p[kEdges[i][2]], *p[kEdges[i][3]]);
+    plain = plain && std::isfinite(a[i].sin_part) && std::isfinite(a[i].cos_part) && a[i].sin_part > 0;
+  }
+  if (!plain) {
+    double lo = 180, hi = 0;
+    for (const AnglePair& x : a) {
+      const double deg = to_deg(x);
+      lo = std::min(lo, deg);
+      hi = std::max(hi, deg);
+    }
+    return {lo, hi};
+  }
+  int lo = 0, hi = 0;
+  for (int i = 1; i < 6; ++i) {
+    if (a[i].sin_part * a[lo].cos_part - a[i].cos_part * a[lo].sin_part < 0) lo = i;
+    if (a[i].sin_part * a[hi].cos_part - a[i].cos_part * a[hi].sin_part > 0) hi = i;
+  }
+  return {std::min(180.0, to_deg(a[lo])), std::max(0.0, to_deg(a[hi]))};
+}
 
 }  // namespace
 
@@ -88,16 +127,12 @@ TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, con
 
   q.shortest_edge = std::numeric_limits<double>::infinity();
   q.longest_edge = 0;
-  q.min_dihedral_deg = 180;
-  q.max_dihedral_deg = 0;
   for (const auto& e : kEdges) {
     const double len = norm(sub(*p[e[1]], *p[e[0]]));
     q.shortest_edge = std::min(q.shortest_edge, len);
     q.longest_edge = std::max(q.longest_edge, len);
-    const double angle = dihedral_deg(*p[e[0]], *p[e[1]], *p[e[2]], *p[e[3]]);
-    q.min_dihedral_deg = std::min(q.min_dihedral_deg, angle);
-    q.max_dihedral_deg = std::max(q.max_dihedral_deg, angle);
   }
+  std::tie(q.min_dihedral_deg, q.max_dihedral_deg) = min_max_dihedral_deg(p);
 
   const double inf = std::numeric_limits<double>::infinity();
   if (det == 0) {
@@ -125,9 +160,7 @@ TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, con
 double tet_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
   // The angles alone, as tet_quality() computes them (no circumradius: exact for a flat cell, and not needed).
   const Point3* p[4] = {&p0, &p1, &p2, &p3};
-  double angle = 180;
-  for (const auto& e : kEdges) angle = std::min(angle, dihedral_deg(*p[e[0]], *p[e[1]], *p[e[2]], *p[e[3]]));
-  return angle;
+  return min_max_dihedral_deg(p).first;
 }
 
 double tet_radius_edge(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {

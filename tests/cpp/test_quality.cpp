@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "qualmesh/quality.h"
 
@@ -85,6 +87,38 @@ TEST(TetQuality, NearlyFlatTetrahedronHasItsExactRadiusEdge) {
     ++permutations;
   } while (std::next_permutation(order.begin(), order.end()));
   EXPECT_EQ(permutations, 24);
+}
+
+// tet_quality and tet_min_dihedral_deg pick the smallest and largest dihedral angles by comparing (sin, cos) pairs
+// and take two arctangents; the six angles of tet_dihedral_angles_deg are measured one by one. Both must agree,
+// value for value, on ordinary, sliver, needle, cap and degenerate (repeated vertex, collinear) tetrahedra.
+TEST(TetQuality, ExtremeDihedralAnglesMatchTheSixAngles) {
+  std::uint64_t state = 12345;
+  auto next = [&state]() {  // deterministic, in [-1, 1)
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) / double(1ull << 52) - 1.0;
+  };
+  std::vector<std::array<Point3, 4>> tets;
+  for (int i = 0; i < 2000; ++i) {
+    std::array<Point3, 4> t;
+    for (auto& p : t) p = {next(), next(), next()};
+    if (i % 4 == 1) t[3] = {0.25 * (t[0][0] + t[1][0] + t[2][0]) + 1e-7 * next(), 0.25 * (t[0][1] + t[1][1] + t[2][1]),
+                            (t[0][2] + t[1][2] + t[2][2]) / 3};  // nearly on the plane of the other three
+    if (i % 4 == 2) t[3] = {t[2][0] + 1e-6 * next(), t[2][1] + 1e-6 * next(), t[2][2]};  // a short edge
+    tets.push_back(t);
+  }
+  tets.push_back({Point3{0, 0, 0}, Point3{1, 0, 0}, Point3{0, 1, 0}, Point3{0, 0, 0}});  // repeated vertex
+  tets.push_back({Point3{0, 0, 0}, Point3{1, 0, 0}, Point3{2, 0, 0}, Point3{0, 1, 1}});  // three collinear
+  tets.push_back({Point3{0, 0, 0}, Point3{1, 0, 0}, Point3{1, 1, 0}, Point3{0, 1, 0}});  // flat square
+  for (std::size_t i = 0; i < tets.size(); ++i) {
+    const auto& t = tets[i];
+    const std::array<double, 6> six = tet_dihedral_angles_deg(t[0], t[1], t[2], t[3]);
+    const double lo = *std::min_element(six.begin(), six.end()), hi = *std::max_element(six.begin(), six.end());
+    const TetQuality q = tet_quality(t[0], t[1], t[2], t[3]);
+    EXPECT_EQ(q.min_dihedral_deg, lo) << "tet " << i;
+    EXPECT_EQ(q.max_dihedral_deg, hi) << "tet " << i;
+    EXPECT_EQ(tet_min_dihedral_deg(t[0], t[1], t[2], t[3]), lo) << "tet " << i;
+  }
 }
 
 TEST(TetQuality, OrientationSign) {

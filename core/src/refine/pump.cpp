@@ -152,6 +152,15 @@ bool keeps_radius_edge(const MeshState& s, const StarScore& candidate, const Sta
   return candidate.max_radius_edge <= std::max(s.options.radius_edge_bound, current.max_radius_edge);
 }
 
+// What StarEvaluator measures of a cell of a new star.
+struct NewCell {
+  bool positive = false;
+  bool in_domain = false;
+  bool touches_acute = false;
+  double min_dihedral_deg = 0;
+  double radius_edge = 0;
+};
+
 // Scores the star v would have over `link` (the boundary of zone `cells`, with `elements` their subsegments and
 // subfacets): invalid when a vertex would be hidden, a sub-element would vanish, a new cell would not be
 // positively oriented, or (volume vertex) the zone spans more than one region.
@@ -198,22 +207,22 @@ class StarEvaluator {
     invalid_for_now_ = false;
     for (const LinkFacet& f : link) {
       Index ids[3];
-      const bool infinite = link_facet_ids(f, ids);
-      if (infinite) continue;
-      const Key3 key = sorted3(ids[0], ids[1], ids[2]);
-      // The new cell (v, f) does not depend on the weight: measured once per walk.
-      auto it = memo_.find(key);
-      if (it == memo_.end()) it = memo_.emplace(key, measure(f)).first;
-      const NewCell& cell = it->second;
-      if (!cell.positive) invalid_for_now_ = true;
-      if (!cell.in_domain) continue;
-      result.min_dihedral_deg = std::min(result.min_dihedral_deg, cell.min_dihedral_deg);
-      result.sliver_deficit_deg += std::max(0.0, s_.options.sliver_angle_deg - cell.min_dihedral_deg);
-      if (cell.radius_edge > s_.options.radius_edge_bound) {
-        // Rule 3's promise stands: above rho0 only where an acute input angle forces the shortest edge.
-        if (!cell.touches_acute) invalid_for_now_ = true;
-        result.max_radius_edge = std::max(result.max_radius_edge, cell.radius_edge);
-      }
+      if (link_facet_ids(f, ids)) continue;  // infinite
+      add_new_cell(new_cell(f, sorted3(ids[0], ids[1], ids[2])), &result);
+    }
+    return result;
+  }
+
+  // The same over a walk's link, a map from sorted ids (kNoIndex last) to entries with a LinkFacet `facet` and a
+  // `cell` pointer (null until measured), in which each facet keeps its measured new cell across events.
+  template <typename LinkMap>
+  StarScore quality_of_walk(LinkMap& link) {
+    StarScore result;
+    invalid_for_now_ = false;
+    for (auto& kv : link) {
+      if (kv.first[2] == kNoIndex) continue;  // infinite
+      if (!kv.second.cell) kv.second.cell = &new_cell(kv.second.facet, kv.first);
+      add_new_cell(*kv.second.cell, &result);
     }
     return result;
   }
@@ -338,13 +347,25 @@ class StarEvaluator {
     return true;
   }
 
-  struct NewCell {
-    bool positive = false;
-    bool in_domain = false;
-    bool touches_acute = false;
-    double min_dihedral_deg = 0;
-    double radius_edge = 0;
-  };
+  // The new cell (v, f) does not depend on the weight: measured once per walk (memo_'s nodes never move).
+  const NewCell& new_cell(const LinkFacet& f, const Key3& key) {
+    auto it = memo_.find(key);
+    if (it == memo_.end()) it = memo_.emplace(key, measure(f)).first;
+    return it->second;
+  }
+
+  void add_new_cell(const NewCell& cell, StarScore* result) {
+    if (!cell.positive) invalid_for_now_ = true;
+    if (!cell.in_domain) return;
+    result->min_dihedral_deg = std::min(result->min_dihedral_deg, cell.min_dihedral_deg);
+    result->sliver_deficit_deg += std::max(0.0, s_.options.sliver_angle_deg - cell.min_dihedral_deg);
+    if (cell.radius_edge > s_.options.radius_edge_bound) {
+      // Rule 3's promise stands: above rho0 only where an acute input angle forces the shortest edge.
+      if (!cell.touches_acute) invalid_for_now_ = true;
+      result->max_radius_edge = std::max(result->max_radius_edge, cell.radius_edge);
+    }
+  }
+
   // The cell of the new star over link facet f: f's inner cell with its vertex f.index replaced by v (same
   // orientation), region from the inner cell.
   NewCell measure(const LinkFacet& f) const {
@@ -430,7 +451,14 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
   std::vector<Ch3> cells;
   s.tr.incident_cells(vh, std::back_inserter(cells));
   std::unordered_set<Ch3, CellHash> in_zone(cells.begin(), cells.end());
-  std::unordered_map<Key3, LinkFacet, KeyHash> link;  // keyed by sorted ids (kNoIndex sorts last)
+  // The link, keyed by sorted ids (kNoIndex sorts last); per facet, the critical weight of the cell across it (NaN
+  // until computed) and the new cell the evaluator measured over it (null until then).
+  struct LinkEntry {
+    LinkFacet facet;
+    double crit = std::numeric_limits<double>::quiet_NaN();
+    const NewCell* cell = nullptr;
+  };
+  std::unordered_map<Key3, LinkEntry, KeyHash> link;
   auto key_of = [](Ch3 c, int i) {
     return sorted3(c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(), c->vertex((i + 3) & 3)->info());
   };
@@ -438,7 +466,7 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
   for (const Ch3& c : cells) {
     const int i = c->index(vh);
     const Key3 k = key_of(c, i);
-    link.emplace(k, LinkFacet{c, i});
+    link.emplace(k, LinkEntry{LinkFacet{c, i}});
     for (Index id : k) ++link_count[id];
   }
   const int star_region = cells.front()->info().region;
@@ -450,7 +478,7 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
   auto link_vector = [&]() {
     std::vector<LinkFacet> out;
     out.reserve(link.size());
-    for (const auto& kv : link) out.push_back(kv.second);
+    for (const auto& kv : link) out.push_back(kv.second.facet);
     return out;
   };
   // The subsegments and subfacets of the zone's cells, read when a star is checked (StarEvaluator::check): most
@@ -478,10 +506,13 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
   std::unordered_map<Ch3, double, CellHash> crit_cache;
   auto next_event = [&](Ch3* cell, Key3* through) {
     double best = std::numeric_limits<double>::infinity();
-    for (const auto& kv : link) {
-      const Ch3 n = kv.second.inner->neighbor(kv.second.index);
-      auto it = crit_cache.find(n);
-      const double w = it != crit_cache.end() ? it->second : (crit_cache[n] = critical_weight(s, p, n));
+    for (auto& kv : link) {
+      const Ch3 n = kv.second.facet.inner->neighbor(kv.second.facet.index);
+      if (std::isnan(kv.second.crit)) {
+        auto it = crit_cache.find(n);
+        kv.second.crit = it != crit_cache.end() ? it->second : (crit_cache[n] = critical_weight(s, p, n));
+      }
+      const double w = kv.second.crit;
       if (w < best) best = w, *cell = n, *through = kv.first;
     }
     return best;
@@ -506,7 +537,7 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
       auto it = link.find(k);
       const int delta = it != link.end() ? -1 : 1;
       if (it != link.end()) link.erase(it);
-      else link.emplace(k, LinkFacet{n, i});
+      else link.emplace(k, LinkEntry{LinkFacet{n, i}});
       for (Index id : k) link_count[id] += delta;
     }
     bool hidden = false;
@@ -528,13 +559,12 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
       // subsegments and subfacets, the expensive half of the score). A star skipped here may be finally invalid
       // (a lost element), which ends the walk when found; the walk then ends at the next star that would be
       // chosen, found invalid for the same reason (the zone only grows), and picks the same weight.
-      const std::vector<LinkFacet> link_now = link_vector();
-      StarScore sc = evaluator.quality(link_now);
+      StarScore sc = evaluator.quality_of_walk(link);
       const bool wanted =
           target ? in_zone.count(*target) && better(sc, destroyed) && (!found || better(sc, choice.best))
                  : better(sc, choice.best);
       if (wanted && keeps_radius_edge(s, sc, current)) {
-        evaluator.check(cells, link_now, element_ptrs(), true, &sc);
+        evaluator.check(cells, link_vector(), element_ptrs(), true, &sc);
         if (!sc.valid && sc.final) {  // the zone only grows: a hidden vertex or a lost element stays so
           choice.end = WalkEnd::Refused;
           choice.refusal = sc.refusal;
