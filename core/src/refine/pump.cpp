@@ -183,20 +183,25 @@ class StarEvaluator {
   // `incremental`: the caller (the walk) checks hidden vertices and regions itself as cells join the zone.
   StarScore score(const std::vector<Ch3>& cells, const std::vector<LinkFacet>& link,
                   const std::vector<const CellElements*>& elements, bool incremental = false) {
-    if (volume_vertex_ && !incremental) {
-      int region = kUnknownRegion;
-      for (const Ch3& c : cells) {
-        const int r = c->info().region;
-        if (region == kUnknownRegion) region = r;
-        if (r != region || r < 0) {
-          StarScore result;
-          result.refusal = Refusal::Region;
-          return result;
-        }
-      }
-    }
+    if (volume_vertex_ && !incremental && spans_regions(cells)) return refused(Refusal::Region);
     StarScore result = quality(link);
     check(cells, link, elements, incremental, &result);
+    return result;
+  }
+
+  // score() of v's present star (`cells`, all of them incident to v, and their link). Every edge and face of a
+  // star cell is either v's or an edge or face of its link, so check() can refuse nothing there (no vertex
+  // hidden, no subsegment or subfacet lost, nothing to retile) and the zone's subsegments and subfacets need not be
+  // read: only a volume vertex's regions and quality()'s verdict on the cells (flat, inverted, above rho0) apply.
+  StarScore score_current(const std::vector<Ch3>& cells, const std::vector<LinkFacet>& link) {
+    if (volume_vertex_ && spans_regions(cells)) return refused(Refusal::Region);
+    StarScore result = quality(link);
+    if (invalid_for_now_) {
+      result.final = false;
+      result.refusal = Refusal::BadCell;
+    } else {
+      result.valid = true;
+    }
     return result;
   }
 
@@ -318,6 +323,23 @@ class StarEvaluator {
   const std::vector<std::pair<Index, Key3>>& lost_subfacets() const { return lost_subfacets_; }
 
  private:
+  static StarScore refused(Refusal why) {
+    StarScore result;
+    result.refusal = why;
+    return result;
+  }
+
+  // A volume vertex's star must lie in one region of the domain.
+  static bool spans_regions(const std::vector<Ch3>& cells) {
+    int region = kUnknownRegion;
+    for (const Ch3& c : cells) {
+      const int r = c->info().region;
+      if (region == kUnknownRegion) region = r;
+      if (r != region || r < 0) return true;
+    }
+    return false;
+  }
+
   static double area(const KPoint3& a, const KPoint3& b, const KPoint3& c) {
     return std::sqrt(CGAL::to_double(CGAL::squared_area(a, b, c)));
   }
@@ -473,7 +495,6 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
   const bool volume_vertex = s.vertices[v].kind == VertexKind::Volume;
   std::vector<CellElements> element_store;
   element_store.reserve(cells.size() + 256);
-  for (const Ch3& c : cells) element_store.push_back(elements_of(s, c));
 
   auto link_vector = [&]() {
     std::vector<LinkFacet> out;
@@ -482,14 +503,14 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
     return out;
   };
   // The subsegments and subfacets of the zone's cells, read when a star is checked (StarEvaluator::check): most
-  // stars of a walk are not worth checking (quality first), so cells joining the zone are read lazily.
+  // stars of a walk are not worth checking (quality first), so the cells (v's star's too) are read lazily.
   auto element_ptrs = [&]() {
     while (element_store.size() < cells.size()) element_store.push_back(elements_of(s, cells[element_store.size()]));
     std::vector<const CellElements*> out;
     for (const auto& e : element_store) out.push_back(&e);
     return out;
   };
-  const StarScore current = evaluator.score(cells, link_vector(), element_ptrs());
+  const StarScore current = evaluator.score_current(cells, link_vector());
   if (!current.valid && current.final) {
     choice.end = WalkEnd::CurrentInvalid;
     choice.refusal = current.refusal;
