@@ -72,7 +72,7 @@ TEST(TetQuality, FlatTetrahedronHasInfiniteRadiusEdge) {
 // A flat tetrahedron of joint.off's mesh (two input vertices and two Steiner points of one tilted facet: six times
 // its volume is 5e-21 for edges near 0.02). The double formula gave radius-edge ratios from below 2 to 2.24
 // depending on the vertex order; the exact value, from rational arithmetic outside the program, is
-// 1.586202146040732, whatever the order.
+// 1.586202146040732, and the circumradius must come out the same double in all 24 orders.
 TEST(TetQuality, NearlyFlatTetrahedronHasItsExactRadiusEdge) {
   const std::array<Point3, 4> p{Point3{0.060885876881281963, -0.42126664795479085, 0.21902527982443559},
                                 Point3{0.045260899999999993, -0.39759100000000003, 0.239422},
@@ -80,9 +80,11 @@ TEST(TetQuality, NearlyFlatTetrahedronHasItsExactRadiusEdge) {
                                 Point3{0.060885888440640981, -0.40942882397739544, 0.22922363991221781}};
   std::array<int, 4> order{0, 1, 2, 3};
   int permutations = 0;
+  const double first = tet_quality(p[0], p[1], p[2], p[3]).circumradius;
   do {
     const TetQuality q = tet_quality(p[order[0]], p[order[1]], p[order[2]], p[order[3]]);
     EXPECT_NEAR(q.radius_edge, 1.586202146040732, 1e-12) << order[0] << order[1] << order[2] << order[3];
+    EXPECT_EQ(q.circumradius, first) << order[0] << order[1] << order[2] << order[3];  // the same in every order
     EXPECT_LT(q.min_dihedral_deg, 1e-9);
     ++permutations;
   } while (std::next_permutation(order.begin(), order.end()));
