@@ -525,7 +525,7 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
   bool found = false;
 
   std::unordered_map<Ch3, double, CellHash> crit_cache;
-  auto next_event = [&](Ch3* cell, Key3* through) {
+  auto next_event = [&](Ch3* cell) {
     double best = std::numeric_limits<double>::infinity();
     for (auto& kv : link) {
       const Ch3 n = kv.second.facet.inner->neighbor(kv.second.facet.index);
@@ -534,14 +534,13 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
         kv.second.crit = it != crit_cache.end() ? it->second : (crit_cache[n] = critical_weight(s, p, n));
       }
       const double w = kv.second.crit;
-      if (w < best) best = w, *cell = n, *through = kv.first;
+      if (w < best) best = w, *cell = n;
     }
     return best;
   };
   constexpr int kMaxEvents = 96;  // stars change a few dozen times within the caps
   Ch3 n;
-  Key3 through{};
-  double w = next_event(&n, &through);
+  double w = next_event(&n);
   for (int event = 0; event < kMaxEvents && w < cap; ++event) {
     if (w < w0) w = w0;  // rounding: a cell already due
     // Absorb n: toggle its four faces in the link.
@@ -572,8 +571,7 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
       break;
     }
     Ch3 n2;
-    Key3 through2{};
-    const double w_next = next_event(&n2, &through2);
+    const double w_next = next_event(&n2);
     const double hi = std::min(w_next, cap);
     if (hi > w) {
       // Only a star that would be chosen is checked in full (the link's edges and faces against the zone's
@@ -599,7 +597,6 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
       }
     }
     n = n2;
-    through = through2;
     w = w_next;
   }
   if (choice.end != WalkEnd::Refused && w < cap) choice.end = WalkEnd::Events;
@@ -607,11 +604,14 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr) {
   return choice;
 }
 
-// Whether (a, m) and (m, b) are subsegments of one segment: a, m, b are collinear, whatever their rounded
-// coordinates say.
-bool consecutive_on_a_segment(const MeshState& s, Index a, Index m, Index b) {
-  const Index seg = subsegment_of(s, a, m);
-  return seg != kNoIndex && subsegment_of(s, m, b) == seg;
+// Whether two sides of triangle (a, b, c) are subsegments of one segment: its vertices are consecutive on that
+// segment, hence collinear, whatever their rounded coordinates say.
+bool consecutive_on_a_segment(const MeshState& s, Index a, Index b, Index c) {
+  const auto middle = [&s](Index u, Index m, Index w) {
+    const Index seg = subsegment_of(s, u, m);
+    return seg != kNoIndex && subsegment_of(s, m, w) == seg;
+  };
+  return middle(a, b, c) || middle(b, c, a) || middle(c, a, b);
 }
 
 // After a move that changed subfacets (StarEvaluator::lost_subfacets): flips the 2D triangulation of each such
@@ -657,7 +657,7 @@ bool retile_facets(MeshState& s, Index v, const std::vector<std::pair<Index, Key
         // above, and the 3D triangulation can have the edge vd over a flat triangle of them (outside the domain).
         // Symbolically such a quadrilateral is not convex: the flip would make a triangle of collinear vertices.
         if (consecutive_on_a_segment(s, v, x->info(), d->info()) ||
-            consecutive_on_a_segment(s, v, y->info(), d->info()))
+            consecutive_on_a_segment(s, v, d->info(), y->info()))
           continue;
         const FaceInfo2 info = fh->info();
         fm.cdt.flip(fh, i);
