@@ -180,12 +180,11 @@ class StarEvaluator {
     return infinite;
   }
 
-  // `incremental`: the caller (the walk) checks hidden vertices and regions itself as cells join the zone.
   StarScore score(const std::vector<Ch3>& cells, const std::vector<LinkFacet>& link,
-                  const std::vector<const CellElements*>& elements, bool incremental = false) {
-    if (volume_vertex_ && !incremental && spans_regions(cells)) return refused(Refusal::Region);
+                  const std::vector<const CellElements*>& elements) {
+    if (volume_vertex_ && spans_regions(cells)) return refused(Refusal::Region);
     StarScore result = quality(link);
-    check(cells, link, elements, incremental, &result);
+    check(cells, link, elements, false, &result);
     return result;
   }
 
@@ -233,7 +232,8 @@ class StarEvaluator {
   }
 
   // The second half of score(), after quality() on the same link: hidden vertices, lost subsegments and
-  // subfacets, flat or inverted cells; sets `valid`, or `refusal` and `final`.
+  // subfacets, flat or inverted cells; sets `valid`, or `refusal` and `final`. `incremental`: the caller (the walk)
+  // checks hidden vertices itself as cells join the zone.
   void check(const std::vector<Ch3>& cells, const std::vector<LinkFacet>& link,
              const std::vector<const CellElements*>& elements, bool incremental, StarScore* score) {
     StarScore& result = *score;
@@ -729,17 +729,9 @@ bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current
   }
 
   // Regions of the new cells: the zone cell each was carved from, found across its outer face after insertion.
-  struct Outer {
-    Ch3 neighbor;
-    int mirror;
-    int region;
-  };
-  std::vector<Outer> outer;
+  std::vector<HoleFace> outer;
   outer.reserve(boundary.size());
-  for (const Facet3& f : boundary) {
-    const Ch3 n = f.first->neighbor(f.second);
-    outer.push_back({n, n->index(f.first), f.first->info().region});
-  }
+  for (const Facet3& f : boundary) outer.push_back(hole_face(f, f.first->info().region));
   // Stars that change: v's and those of the zone's vertices.
   for (const Ch3& c : cells)
     for (int k = 0; k < 4; ++k)
@@ -749,8 +741,8 @@ bool apply_weight(MeshState& s, Index v, double weight, const StarScore& current
                                      boundary.front().second);
   nv->info() = v;
   s.vertices[v].handle = nv;
-  for (const Outer& o : outer) {
-    const Ch3 c = o.neighbor->neighbor(o.mirror);
+  for (const HoleFace& o : outer) {
+    const Ch3 c = o.new_cell();
     c->info().region = s.tr.is_infinite(c) ? kOutsideRegion : o.region;
     c->info().guess = kUnknownRegion;
   }

@@ -343,13 +343,6 @@ void enqueue_tet_if_bad(MeshState& s, Ch3 c) {
 // subfacets (2D stars of the new vertex). `region`: region of the new cells (kUnknownRegion for boundary points).
 void insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& cand, int region) {
   const KWeightedPoint3 wp(s.kpoint(id), 0);
-  // Remember, across each outer face of the hole, the region of the destroyed cell (the new cell's guess).
-  struct Outer {
-    Ch3 neighbor;
-    int mirror;
-    int region;
-  };
-  std::vector<Outer> outer;
   // Which candidates survive: every new cell joins the new vertex to a facet of the hole's boundary, so an edge or
   // face of a destroyed cell is still in the triangulation afterwards exactly when it lies on that boundary (a
   // cell around it outside the hole meets one inside across a boundary facet holding it). Cheaper than asking the
@@ -374,24 +367,20 @@ void insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& c
     std::sort(kept_edges.begin(), kept_edges.end());
     std::sort(kept_faces.begin(), kept_faces.end());
   }
-  // Across each outer face of the hole: the outside cell and its mirror index. After insertion the new cell is
-  // the outside cell's neighbour there: the star of the new vertex without a walk around it (incident_cells).
-  const bool want_guess = region < 0 && s.regions_known;
+  // The hole's outer faces, each with the region of the destroyed cell inside (the new cell's guess).
+  std::vector<HoleFace> outer;
   outer.reserve(cz.boundary.size());
   for (const Facet3& f : cz.boundary) {
-    const Ch3 n = f.first->neighbor(f.second);
-    const int r = !want_guess                              ? kUnknownRegion
-                  : f.first->info().region != kUnknownRegion ? f.first->info().region
-                                                             : f.first->info().guess;
-    outer.push_back({n, n->index(f.first), r});
+    const CellInfo& inside = f.first->info();
+    outer.push_back(hole_face(f, inside.region != kUnknownRegion ? inside.region : inside.guess));
   }
   const Vh3 vh = s.tr.insert_in_hole(wp, cz.cells.begin(), cz.cells.end(), cz.boundary.front().first,
                                      cz.boundary.front().second);
   vh->info() = id;
   s.vertices[id].handle = vh;
   ++s.stats.num_steiner_vertices;
-  if (want_guess)
-    for (const Outer& o : outer) o.neighbor->neighbor(o.mirror)->info().guess = o.region;
+  if (region < 0 && s.regions_known)
+    for (const HoleFace& o : outer) o.new_cell()->info().guess = o.region;
   if (s.tr.number_of_vertices() >= s.options.max_vertices) s.vertex_limit_reached = true;
 
   VertexRecord& r = s.vertices[id];
@@ -412,7 +401,7 @@ void insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& c
   // Cells of the star: region and Rule 3.
   std::vector<Ch3> star;
   star.reserve(outer.size());
-  for (const Outer& o : outer) star.push_back(o.neighbor->neighbor(o.mirror));
+  for (const HoleFace& o : outer) star.push_back(o.new_cell());
   for (const Ch3& c : star) {
     if (s.tr.is_infinite(c)) {
       c->info().region = s.regions_known ? kOutsideRegion : kUnknownRegion;

@@ -132,6 +132,20 @@ struct MeshState {
   KPoint3 kpoint(Index v) const { return to_kpoint(vertices[v].point); }
 };
 
+// A facet of a conflict zone's boundary, seen from the cell outside the zone: after insert_in_hole the new cell on
+// that facet is new_cell() (the new vertex's star, without a walk around it). `region`: what the caller wants to
+// carry from the destroyed cell inside to the new one.
+struct HoleFace {
+  Ch3 outside;
+  int mirror;
+  int region;
+  Ch3 new_cell() const { return outside->neighbor(mirror); }
+};
+inline HoleFace hole_face(const Facet3& f, int region) {
+  const Ch3 n = f.first->neighbor(f.second);
+  return {n, n->index(f.first), region};
+}
+
 // Smallest dihedral angle of finite cell c in degrees, measured once per cell (CellInfo::min_dihedral_deg): the
 // pumping passes and sliver insertion rescan every cell many times.
 inline double cell_min_dihedral_deg(const MeshState& s, Ch3 c) {
