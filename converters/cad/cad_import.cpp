@@ -16,21 +16,56 @@ bool is_cad_path(const std::string& path) {
   return false;
 }
 
+namespace cad {
+namespace {
+
+// The healed solids of the last CAD file read_cad() read in this process, for fit_mesh_to_cad() (cad_fit.cpp), which
+// needs the CAD faces of the model just meshed. Keyed by the file and the healing options; one entry.
+struct HealedCache {
+  std::string path;
+  bool heal = true;
+  double sewing_tolerance = 0;
+  TopoDS_Shape solids;
+  std::string format;
+};
+HealedCache& healed_cache() {
+  static HealedCache cache;
+  return cache;
+}
+
+std::string cad_format(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".step" || ext == ".stp") return "STEP";
+  if (ext == ".iges" || ext == ".igs") return "IGES";
+  if (ext == ".brep" || ext == ".brp") return "BREP";
+  if (ext == ".fcstd") return "FCStd";
+  throw InputError(ErrorCode::Unsupported, "not a CAD file extension: '" + ext + "'", path);
+}
+
+}  // namespace
+
+TopoDS_Shape read_healed_solids(const std::string& path, const CadOptions& options, std::vector<std::string>& log,
+                                bool use_cache) {
+  HealedCache& cache = healed_cache();
+  if (use_cache && !cache.solids.IsNull() && cache.path == path && cache.heal == options.heal &&
+      cache.sewing_tolerance == options.sewing_tolerance)
+    return cache.solids;
+  const std::string format = cad_format(path);
+  TopoDS_Shape shape = format == "FCStd" ? read_fcstd_file(path, log) : read_occt_file(path, format);
+  TopoDS_Shape solids = heal_into_solids(shape, options, path, log);
+  cache = {path, options.heal, options.sewing_tolerance, solids, format};
+  return solids;
+}
+
+}  // namespace cad
+
 CadModel read_cad(const std::string& path, const CadOptions& options) {
   const std::string ext = cad::lower_extension(path);
   if (ext == ".scad") return cad::read_scad_file(path, options);
-  std::string format;
-  if (ext == ".step" || ext == ".stp") format = "STEP";
-  else if (ext == ".iges" || ext == ".igs") format = "IGES";
-  else if (ext == ".brep" || ext == ".brp") format = "BREP";
-  else if (ext == ".fcstd") format = "FCStd";
-  else throw InputError(ErrorCode::Unsupported, "not a CAD file extension: '" + ext + "'", path);
-
   std::vector<std::string> log;
-  TopoDS_Shape shape = format == "FCStd" ? cad::read_fcstd_file(path, log) : cad::read_occt_file(path, format);
-  TopoDS_Shape solids = cad::heal_into_solids(shape, options, path, log);
+  const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/false);
   CadModel model = cad::convert_solids_to_plc(solids, options, path);
-  model.summary.source_format = format;
+  model.summary.source_format = cad::cad_format(path);
   model.summary.healing_log.insert(model.summary.healing_log.begin(), log.begin(), log.end());
   return model;
 }

@@ -26,6 +26,12 @@ TopoDS_Shape read_fcstd_file(const std::string& path, std::vector<std::string>& 
 TopoDS_Shape heal_into_solids(const TopoDS_Shape& shape, const CadOptions& options, const std::string& file,
                               std::vector<std::string>& log);
 
+// read_occt_file / read_fcstd_file, then heal_into_solids, by the file's extension. The result is also kept for
+// the next call in this process (one entry, keyed by path and healing options); use_cache = true returns that kept
+// shape when the key matches instead of reading again (fit_mesh_to_cad right after read_cad).
+TopoDS_Shape read_healed_solids(const std::string& path, const CadOptions& options, std::vector<std::string>& log,
+                                bool use_cache);
+
 // Tessellates the solids of `solids` (output of heal_into_solids) and builds the PLC and summary.
 CadModel convert_solids_to_plc(const TopoDS_Shape& solids, const CadOptions& options, const std::string& file);
 

@@ -21,15 +21,10 @@ std::vector<double> distances_to_cad_faces(const std::string& path, const std::v
                                            const std::vector<int>& face_numbers, const CadOptions& options) {
   if (points.size() != face_numbers.size())
     throw InputError(ErrorCode::IndexOutOfRange, "one face number per point is needed", path);
-  const std::string ext = cad::lower_extension(path);
-  if (ext == ".scad") throw InputError(ErrorCode::Unsupported, "an OpenSCAD model has no CAD faces", path);
-  std::string format = ext == ".step" || ext == ".stp"   ? "STEP"
-                       : ext == ".iges" || ext == ".igs" ? "IGES"
-                       : ext == ".fcstd"                 ? "FCStd"
-                                                         : "BREP";
+  if (cad::lower_extension(path) == ".scad")
+    throw InputError(ErrorCode::Unsupported, "an OpenSCAD model has no CAD faces", path);
   std::vector<std::string> log;
-  TopoDS_Shape shape = format == "FCStd" ? cad::read_fcstd_file(path, log) : cad::read_occt_file(path, format);
-  const TopoDS_Shape solids = cad::heal_into_solids(shape, options, path, log);
+  const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/false);
   TopTools_IndexedMapOfShape faces;
   TopExp::MapShapes(solids, TopAbs_FACE, faces);
 

@@ -21,6 +21,8 @@ namespace qualmesh::cad_plugin {
 inline constexpr const char* kPluginFileName = "libqualmesh_cad_plugin.so";
 // Name of the entry point (load_cad_fn) in the plugin.
 inline constexpr const char* kLoadCadSymbol = "qualmesh_cad_plugin_load_cad_v1";
+// Name of the second entry point (fit_mesh_fn): fit_mesh_to_cad.
+inline constexpr const char* kFitMeshSymbol = "qualmesh_cad_plugin_fit_mesh_v1";
 
 enum class LoadStatus : int {
   Ok = 0,             // plc and notes are filled
@@ -43,5 +45,16 @@ struct LoadResult {
 
 // read_cad(path, *options) into *result. Never throws: every outcome is a LoadStatus. Mutates *result only.
 using LoadCadFn = void (*)(const char* path, const CadOptions* options, LoadResult* result) noexcept;
+
+// What one fit call fills (status and error fields as in LoadResult; plc and notes unused).
+struct FitResult {
+  LoadResult outcome;
+  CadFitReport report;  // Ok: fit_mesh_to_cad's report
+};
+
+// fit_mesh_to_cad(path, *options, *mesh, *fit_options) into *mesh and *result. Never throws. Mutates *mesh and
+// *result only.
+using FitMeshFn = void (*)(const char* path, const CadOptions* options, const CadFitOptions* fit_options,
+                           TetMesh* mesh, FitResult* result) noexcept;
 
 }  // namespace qualmesh::cad_plugin

@@ -36,16 +36,14 @@ std::vector<std::string> summary_notes(const CadSummary& s) {
 
 }  // namespace qualmesh::cad_plugin
 
-extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_load_cad_v1(
-    const char* path, const qualmesh::CadOptions* options, qualmesh::cad_plugin::LoadResult* result) noexcept {
-  using namespace qualmesh;
-  using cad_plugin::LoadStatus;
-  // Checked against the declaration the CLI uses: a changed signature must change the versioned name too.
-  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_load_cad_v1), cad_plugin::LoadCadFn>);
+namespace qualmesh::cad_plugin {
+namespace {
+
+// Runs `work` and turns what it throws into the fields of `result` (LoadResult's statuses).
+template <class Work>
+void guarded(LoadResult* result, Work&& work) noexcept {
   try {
-    CadModel model = read_cad(path, *options);
-    result->notes = cad_plugin::summary_notes(model.summary);
-    result->plc = std::move(model.plc);
+    work();
     result->status = LoadStatus::Ok;
   } catch (const InputError& e) {
     result->status = LoadStatus::InputError;
@@ -63,4 +61,27 @@ extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_load_
     result->status = LoadStatus::InternalError;
     result->message = "the CAD front end threw an exception that is not a std::exception";
   }
+}
+
+}  // namespace
+}  // namespace qualmesh::cad_plugin
+
+extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_load_cad_v1(
+    const char* path, const qualmesh::CadOptions* options, qualmesh::cad_plugin::LoadResult* result) noexcept {
+  using namespace qualmesh;
+  // Checked against the declaration the CLI uses: a changed signature must change the versioned name too.
+  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_load_cad_v1), cad_plugin::LoadCadFn>);
+  cad_plugin::guarded(result, [&] {
+    CadModel model = read_cad(path, *options);
+    result->notes = cad_plugin::summary_notes(model.summary);
+    result->plc = std::move(model.plc);
+  });
+}
+
+extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_fit_mesh_v1(
+    const char* path, const qualmesh::CadOptions* options, const qualmesh::CadFitOptions* fit_options,
+    qualmesh::TetMesh* mesh, qualmesh::cad_plugin::FitResult* result) noexcept {
+  using namespace qualmesh;
+  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_fit_mesh_v1), cad_plugin::FitMeshFn>);
+  cad_plugin::guarded(&result->outcome, [&] { result->report = fit_mesh_to_cad(path, *options, *mesh, *fit_options); });
 }

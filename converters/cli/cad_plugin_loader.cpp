@@ -20,6 +20,7 @@ namespace fs = std::filesystem;
 
 struct PluginHandle {
   cad_plugin::LoadCadFn load_cad = nullptr;  // null when no candidate loaded
+  cad_plugin::FitMeshFn fit_mesh = nullptr;
   std::string failure;                       // why, one "path: reason" per candidate tried
 };
 
@@ -52,34 +53,36 @@ PluginHandle open_plugin() {
       continue;
     }
     void* symbol = dlsym(library, cad_plugin::kLoadCadSymbol);
-    if (!symbol) {
-      handle.failure += candidate.string() + ": no " + cad_plugin::kLoadCadSymbol +
+    void* fit_symbol = dlsym(library, cad_plugin::kFitMeshSymbol);
+    if (!symbol || !fit_symbol) {
+      handle.failure += candidate.string() + ": no " + (symbol ? cad_plugin::kFitMeshSymbol : cad_plugin::kLoadCadSymbol) +
                         " (a plugin built from another version of QualMesh)";
       dlclose(library);
       continue;
     }
     handle.load_cad = reinterpret_cast<cad_plugin::LoadCadFn>(symbol);
+    handle.fit_mesh = reinterpret_cast<cad_plugin::FitMeshFn>(fit_symbol);
     handle.failure.clear();
     return handle;
   }
   return handle;
 }
 
-}  // namespace
-
-Plc read_cad_through_plugin(const std::string& path, const CadOptions& options, std::vector<std::string>* notes) {
+const PluginHandle& plugin_or_throw(const std::string& path) {
   static const PluginHandle plugin = open_plugin();
   if (!plugin.load_cad)
     throw InputError(ErrorCode::Unsupported,
                      "the CAD front end (OpenCASCADE) is not available: " + plugin.failure +
                          "; install libocct-data-exchange-dev and rebuild",
                      path);
-  cad_plugin::LoadResult result;
-  plugin.load_cad(path.c_str(), &options, &result);
+  return plugin;
+}
+
+// Rethrows what the plugin caught (LoadResult's statuses); returns on Ok.
+void rethrow(cad_plugin::LoadResult& result) {
   switch (result.status) {
     case cad_plugin::LoadStatus::Ok:
-      if (notes) notes->insert(notes->end(), result.notes.begin(), result.notes.end());
-      return std::move(result.plc);
+      return;
     case cad_plugin::LoadStatus::InputError:
       throw InputError(static_cast<ErrorCode>(result.error_code), result.message, result.file, result.line,
                        std::move(result.ids));
@@ -89,6 +92,26 @@ Plc read_cad_through_plugin(const std::string& path, const CadOptions& options, 
       break;
   }
   throw std::runtime_error(result.message);
+}
+
+}  // namespace
+
+Plc read_cad_through_plugin(const std::string& path, const CadOptions& options, std::vector<std::string>* notes) {
+  const PluginHandle& plugin = plugin_or_throw(path);
+  cad_plugin::LoadResult result;
+  plugin.load_cad(path.c_str(), &options, &result);
+  rethrow(result);
+  if (notes) notes->insert(notes->end(), result.notes.begin(), result.notes.end());
+  return std::move(result.plc);
+}
+
+CadFitReport fit_mesh_through_plugin(const std::string& path, const CadOptions& options,
+                                     const CadFitOptions& fit_options, TetMesh& mesh) {
+  const PluginHandle& plugin = plugin_or_throw(path);
+  cad_plugin::FitResult result;
+  plugin.fit_mesh(path.c_str(), &options, &fit_options, &mesh, &result);
+  rethrow(result.outcome);
+  return result.report;
 }
 
 }  // namespace qualmesh::cli

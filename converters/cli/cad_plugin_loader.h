@@ -22,4 +22,8 @@ namespace qualmesh::cli {
 // an internal error.
 Plc read_cad_through_plugin(const std::string& path, const CadOptions& options, std::vector<std::string>* notes);
 
+// fit_mesh_to_cad(path, options, mesh, fit_options) through the plugin (same errors as read_cad_through_plugin).
+CadFitReport fit_mesh_through_plugin(const std::string& path, const CadOptions& options,
+                                     const CadFitOptions& fit_options, TetMesh& mesh);
+
 }  // namespace qualmesh::cli

@@ -25,14 +25,12 @@ bool has_cad_extension(const std::string& path) {
   return false;
 }
 
-#if QUALMESH_WITH_CAD
-Plc load_cad(const std::string& path, const InputOptions& options, std::vector<std::string>* notes) {
+CadOptions cad_options_of(const InputOptions& options) {
   CadOptions cad_options;
   cad_options.deflection = options.deflection;
   cad_options.relative_deflection = options.relative_deflection;
-  return read_cad_through_plugin(path, cad_options, notes);
+  return cad_options;
 }
-#endif
 
 }  // namespace
 
@@ -52,9 +50,9 @@ Plc load_input(const std::string& path, const InputOptions& options, std::vector
     read_options.merge_coplanar = !options.keep_triangles;
     return read_plc(path, read_options);
   }
-  if (has_cad_extension(path)) {
+  if (is_cad_input(path)) {
 #if QUALMESH_WITH_CAD
-    return load_cad(path, options, notes);
+    return read_cad_through_plugin(path, cad_options_of(options), notes);
 #else
     (void)notes;
     throw InputError(ErrorCode::Unsupported,
@@ -67,6 +65,18 @@ Plc load_input(const std::string& path, const InputOptions& options, std::vector
                    "unknown input format (expected .poly .smesh .node .off .stl .obj .mesh, or CAD: .step .stp "
                    ".iges .igs .brep .fcstd .scad)",
                    path);
+}
+
+bool is_cad_input(const std::string& path) { return has_cad_extension(path); }
+
+CadFitReport fit_to_cad_input(const std::string& path, const InputOptions& options, const CadFitOptions& fit_options,
+                              TetMesh& mesh) {
+#if QUALMESH_WITH_CAD
+  return fit_mesh_through_plugin(path, cad_options_of(options), fit_options, mesh);
+#else
+  (void)options, (void)fit_options, (void)mesh;
+  throw InputError(ErrorCode::Unsupported, "this qualmesh was built without the CAD front end (OpenCASCADE)", path);
+#endif
 }
 
 }  // namespace qualmesh::cli

@@ -13,7 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "qualmesh/cad_import.h"
 #include "qualmesh/plc.h"
+#include "qualmesh/tet_mesh.h"
 
 namespace qualmesh::cli {
 
@@ -38,5 +40,13 @@ void add_input_options(CLI::App& command, InputOptions& options);
 // into a Plc. When `notes` is given, lines describing the source (CAD solids, faces, edges, healing) are appended.
 // Throws InputError.
 Plc load_input(const std::string& path, const InputOptions& options, std::vector<std::string>* notes = nullptr);
+
+// True for the inputs load_input reads through the CAD front end (.step .stp .iges .igs .brep .brp .fcstd .scad).
+bool is_cad_input(const std::string& path);
+
+// fit_mesh_to_cad (cad_import.h) for a mesh of the CAD input at `path`, read with `options`, through the plugin.
+// Throws InputError like load_input (Unsupported when built without the CAD front end).
+CadFitReport fit_to_cad_input(const std::string& path, const InputOptions& options, const CadFitOptions& fit_options,
+                              TetMesh& mesh);
 
 }  // namespace qualmesh::cli

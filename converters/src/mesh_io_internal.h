@@ -32,22 +32,6 @@ inline int tet_region_of(const TetMesh& mesh, std::size_t t) {
   return mesh.tet_region.empty() ? 0 : mesh.tet_region[t];
 }
 
-// The group a boundary face is written in: its facet marker when the mesh carries markers and any is non-zero,
-// else its input facet index + 1 (so a marker-less input still gets one group per facet), else 0.
-inline std::vector<int> face_labels(const TetMesh& mesh) {
-  std::vector<int> labels(mesh.faces.size(), 0);
-  bool any_marker = false;
-  for (int m : mesh.face_marker) any_marker = any_marker || m != 0;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    if (any_marker && f < mesh.face_marker.size()) {
-      labels[f] = mesh.face_marker[f];
-    } else if (!any_marker && f < mesh.face_facet.size() && mesh.face_facet[f] >= 0) {
-      labels[f] = mesh.face_facet[f] + 1;
-    }
-  }
-  return labels;
-}
-
 // Splits a text file into whitespace-separated tokens, skipping comments from `comment` to the end of the line
 // (comment = 0: none), and knows the line of each token. Quoted strings ("a b") are one token, quotes removed.
 class Tokenizer {
@@ -160,6 +144,7 @@ TetMesh read_tetgen(const std::string& base);
 TetMesh read_gmsh(const std::string& path);
 TetMesh read_medit(const std::string& path);
 TetMesh read_vtu(const std::string& path);
+TetMesh read_abaqus(const std::string& path);
 
 // "dir/name.ext" -> "dir/name"; "dir/name" unchanged.
 std::string strip_extension(const std::string& path);

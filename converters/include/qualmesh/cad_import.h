@@ -22,6 +22,8 @@
 #include <vector>
 
 #include "qualmesh/plc.h"
+#include "qualmesh/second_order.h"
+#include "qualmesh/tet_mesh.h"
 
 namespace qualmesh {
 
@@ -82,5 +84,34 @@ CadModel read_cad(const std::string& path, const CadOptions& options = {});
 // as read_cad does, and for .scad files (no CAD faces). Mutates nothing.
 std::vector<double> distances_to_cad_faces(const std::string& path, const std::vector<Point3>& points,
                                            const std::vector<int>& face_numbers, const CadOptions& options = {});
+
+// Fitting a mesh to the CAD model it was made from (the mesher keeps boundary nodes on the PLC's facets, which on a
+// curved face are chords of the surface; FreeCAD finds a constraint's nodes on the CAD surface itself, to ~1e-7).
+struct CadFitOptions {
+  // Make the mesh second order (make_second_order) after the corners are fitted, and put the mid nodes of edges on
+  // curved CAD faces and edges onto them.
+  bool second_order = false;
+  NodeMoveOptions moves;  // what an element must stay like when a node moves (second_order.h)
+};
+
+struct CadFitReport {
+  std::size_t num_corner_targets = 0;    // boundary corner nodes with a curved CAD face or edge to go to
+  std::size_t num_mid_targets = 0;       // mid nodes of edges on curved CAD faces or edges
+  double max_offset_before = 0;          // largest distance of a corner node from its CAD face or edge, before
+  NodeMoveReport corners;                // the moves of the corner nodes (linear element checks)
+  NodeMoveReport mids;                   // the moves of the mid nodes (Jacobian checks at the ten nodes)
+  std::size_t num_fixed_vertices = 0;    // nodes on two or more CAD edges (CAD vertices): never moved
+};
+
+// Moves every boundary node of `mesh` onto the CAD face or edge it lies on: a node on one marked edge (Edge<e>)
+// onto CAD edge e, another node on faces of a single marker f onto CAD face f; a node on two or more edges (a CAD
+// vertex) stays. `mesh` must come from meshing read_cad(path, options).plc (face markers = CAD face
+// numbers, edge markers = CAD edge numbers). A node already on its face or edge to rounding (1e-12 of the
+// diagonal) is not moved, so exact planar polygons stay exact. Moves are checked (move_nodes_checked): a node whose move would invert
+// or badly distort an element goes part of the way or stays, and the report counts it. With
+// options.second_order the mesh is made second order and the mid nodes are fitted the same way. Throws InputError
+// as read_cad does (the model is read again unless it is the one read_cad read last in this process).
+CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options, TetMesh& mesh,
+                             const CadFitOptions& fit_options = {});
 
 }  // namespace qualmesh

@@ -120,6 +120,18 @@ TetMesh extract_mesh(MeshState& s, std::vector<std::uint8_t>& touches_acute) {
     mesh.face_facet.push_back(f.facet);
     mesh.face_marker.push_back(f.facet >= 0 ? s.plc->facets[f.facet].marker : 0);
   }
+  // The subsegments of every marked input segment (CAD edges: Edge<marker>), walking its chain from a to b; the
+  // segments are in collect_segments order, so the list is deterministic.
+  for (Index seg = 0; seg < s.complex.segments.size(); ++seg) {
+    const Segment& segment = s.complex.segments[seg];
+    if (segment.marker == 0) continue;
+    for (Index u = segment.a, v; u != segment.b; u = v) {
+      v = next_on_segment(s, seg, u);
+      if (new_id[u] == kNoIndex || new_id[v] == kNoIndex) continue;  // outside the meshed regions
+      mesh.edges.push_back({new_id[u], new_id[v]});
+      mesh.edge_marker.push_back(segment.marker);
+    }
+  }
   return mesh;
 }
 

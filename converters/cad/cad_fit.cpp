@@ -1,0 +1,220 @@
+// Fitting a mesh to its CAD model (cad_import.h, fit_mesh_to_cad): the boundary nodes the mesher placed on the
+// chords of a curved face's tessellation (Rules 1 and 2 split subsegments and subfacets of the PLC, which is flat),
+// and the mid nodes of second-order elements, are moved onto the CAD surface itself, so that FreeCAD's geometric
+// node search (shared/docs/FREECAD.md: distance to the face within its BRep tolerance, ~1e-7) finds every one of
+// them and the mesh volume converges to the CAD volume.
+//
+// Projection: ShapeAnalysis_Surface::ValueOfUV (robust on periodic and singular surfaces) for faces,
+// ShapeAnalysis_Curve::Project within the edge's parameter range for edges. A node within the chordal deflection of
+// its face moves at most about that far, but a move is always checked against the elements around the node
+// (move_nodes_checked, second_order.h): relaxed part of the way, or not made, rather than inverting an element.
+#include <BRep_Tool.hxx>
+#include <Geom_Curve.hxx>
+#include <Geom_Surface.hxx>
+#include <ShapeAnalysis_Curve.hxx>
+#include <ShapeAnalysis_Surface.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <gp_Pnt2d.hxx>
+
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "cad_private.h"
+#include "qualmesh/cad_import.h"
+#include "qualmesh/error.h"
+
+namespace qualmesh {
+namespace {
+
+constexpr int kNone = 0;
+constexpr int kSeveral = -1;
+
+// The one CAD entity (marker > 0) a node lies on, kNone, or kSeveral.
+void note(std::vector<int>& on, Index node, int marker) {
+  if (marker <= 0) return;
+  int& slot = on[node];
+  if (slot == kNone) slot = marker;
+  else if (slot != marker) slot = kSeveral;
+}
+
+// Projects points onto the faces and edges of one healed shape. Planar faces are included: a plane face whose
+// edges stray from its plane is meshed from its triangles (brep_to_plc.cpp), whose Steiner points are then off the
+// CAD plane; a node already on the plane projects onto itself and is not moved (targets()).
+class Projector {
+ public:
+  explicit Projector(const TopoDS_Shape& solids) {
+    TopExp::MapShapes(solids, TopAbs_FACE, faces_);
+    TopExp::MapShapes(solids, TopAbs_EDGE, edges_);
+  }
+
+  // Target of a point on CAD face f; false when there is none to go to.
+  bool onto_face(int f, const Point3& p, Point3& target) {
+    FaceData* data = face(f);
+    if (!data) return false;
+    const gp_Pnt local = gp_Pnt(p[0], p[1], p[2]).Transformed(data->to_local);
+    const gp_Pnt2d uv = data->analysis->ValueOfUV(local, data->precision);
+    const gp_Pnt q = data->analysis->Value(uv).Transformed(data->to_global);
+    target = {q.X(), q.Y(), q.Z()};
+    return true;
+  }
+
+  bool onto_edge(int e, const Point3& p, Point3& target) {
+    EdgeData* data = edge(e);
+    if (!data) return false;
+    const gp_Pnt local = gp_Pnt(p[0], p[1], p[2]).Transformed(data->to_local);
+    gp_Pnt projected;
+    double parameter = 0;
+    ShapeAnalysis_Curve().Project(data->curve, local, data->precision, projected, parameter, data->first,
+                                  data->last);
+    const gp_Pnt q = projected.Transformed(data->to_global);
+    target = {q.X(), q.Y(), q.Z()};
+    return true;
+  }
+
+ private:
+  struct FaceData {
+    std::unique_ptr<ShapeAnalysis_Surface> analysis;
+    gp_Trsf to_local, to_global;
+    double precision = 1e-9;
+  };
+  struct EdgeData {
+    Handle(Geom_Curve) curve;
+    double first = 0, last = 0;
+    gp_Trsf to_local, to_global;
+    double precision = 1e-9;
+  };
+
+  FaceData* face(int f) {
+    if (f < 1 || f > faces_.Extent()) return nullptr;
+    auto it = face_data_.find(f);
+    if (it == face_data_.end()) {
+      std::unique_ptr<FaceData> data;
+      const TopoDS_Face face = TopoDS::Face(faces_(f));
+      {
+        TopLoc_Location location;
+        Handle(Geom_Surface) surface = BRep_Tool::Surface(face, location);
+        if (!surface.IsNull()) {
+          data = std::make_unique<FaceData>();
+          data->analysis = std::make_unique<ShapeAnalysis_Surface>(surface);
+          data->to_global = location.Transformation();
+          data->to_local = location.Transformation().Inverted();
+          data->precision = std::max(1e-12, 1e-3 * BRep_Tool::Tolerance(face));
+        }
+      }
+      it = face_data_.emplace(f, std::move(data)).first;
+    }
+    return it->second.get();
+  }
+
+  EdgeData* edge(int e) {
+    if (e < 1 || e > edges_.Extent()) return nullptr;
+    auto it = edge_data_.find(e);
+    if (it == edge_data_.end()) {
+      std::unique_ptr<EdgeData> data;
+      const TopoDS_Edge edge = TopoDS::Edge(edges_(e));
+      if (!BRep_Tool::Degenerated(edge)) {
+        TopLoc_Location location;
+        double first = 0, last = 0;
+        Handle(Geom_Curve) curve = BRep_Tool::Curve(edge, location, first, last);
+        if (!curve.IsNull()) {
+          data = std::make_unique<EdgeData>();
+          data->curve = curve;
+          data->first = first;
+          data->last = last;
+          data->to_global = location.Transformation();
+          data->to_local = location.Transformation().Inverted();
+          data->precision = std::max(1e-12, 1e-3 * BRep_Tool::Tolerance(edge));
+        }
+      }
+      it = edge_data_.emplace(e, std::move(data)).first;
+    }
+    return it->second.get();
+  }
+
+  TopTools_IndexedMapOfShape faces_, edges_;
+  std::map<int, std::unique_ptr<FaceData>> face_data_;
+  std::map<int, std::unique_ptr<EdgeData>> edge_data_;
+};
+
+double distance(const Point3& a, const Point3& b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+// Targets for the nodes listed in on_edge / on_face (by node index): an edge wins over a face; a node on several
+// edges (a CAD vertex) or several faces and no edge stays.
+std::vector<NodeMove> targets(Projector& projector, const TetMesh& mesh, const std::vector<int>& on_edge,
+                              const std::vector<int>& on_face, Index first_node, std::size_t& num_fixed,
+                              double* max_offset) {
+  BoundingBox box;
+  for (const Point3& p : mesh.points) box.add(p);
+  const double still = box.empty() ? 0 : 1e-12 * distance(box.min, box.max);
+  std::vector<NodeMove> moves;
+  for (Index v = first_node; v < on_edge.size(); ++v) {
+    Point3 target{};
+    bool found = false;
+    if (on_edge[v] == kSeveral) {
+      ++num_fixed;
+      continue;
+    }
+    if (on_edge[v] > 0) found = projector.onto_edge(on_edge[v], mesh.points[v], target);
+    else if (on_face[v] > 0) found = projector.onto_face(on_face[v], mesh.points[v], target);
+    if (!found) continue;
+    if (distance(target, mesh.points[v]) <= still) continue;  // on it already (to rounding): stays exact
+    if (max_offset) *max_offset = std::max(*max_offset, distance(target, mesh.points[v]));
+    moves.push_back({v, target});
+  }
+  return moves;
+}
+
+}  // namespace
+
+CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options, TetMesh& mesh,
+                             const CadFitOptions& fit_options) {
+  CadFitReport report;
+  if (cad::lower_extension(path) == ".scad") {
+    if (fit_options.second_order) make_second_order(mesh);
+    return report;  // the rendered surface is the model: nothing to fit to
+  }
+  std::vector<std::string> log;
+  const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/true);
+  try {
+    Projector projector(solids);
+    const std::vector<int> labels = face_labels(mesh);
+    // Corner nodes.
+    {
+      std::vector<int> on_edge(mesh.points.size(), kNone), on_face(mesh.points.size(), kNone);
+      for (std::size_t e = 0; e < mesh.edges.size(); ++e)
+        for (Index v : mesh.edges[e]) note(on_edge, v, mesh.edge_marker[e]);
+      for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+        for (Index v : mesh.faces[f]) note(on_face, v, labels[f]);
+      const std::vector<NodeMove> moves =
+          targets(projector, mesh, on_edge, on_face, 0, report.num_fixed_vertices, &report.max_offset_before);
+      report.num_corner_targets = moves.size();
+      report.corners = move_nodes_checked(mesh, moves, fit_options.moves);
+    }
+    if (!fit_options.second_order) return report;
+    const Index first_mid = static_cast<Index>(mesh.points.size());
+    make_second_order(mesh);
+    std::vector<int> on_edge(mesh.points.size(), kNone), on_face(mesh.points.size(), kNone);
+    for (std::size_t e = 0; e < mesh.edges.size(); ++e) note(on_edge, mesh.edge_mid[e], mesh.edge_marker[e]);
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      for (Index v : mesh.face_mid[f]) note(on_face, v, labels[f]);
+    std::size_t unused = 0;
+    const std::vector<NodeMove> moves = targets(projector, mesh, on_edge, on_face, first_mid, unused, nullptr);
+    report.num_mid_targets = moves.size();
+    report.mids = move_nodes_checked(mesh, moves, fit_options.moves);
+  } catch (const Standard_Failure& failure) {
+    throw InputError(ErrorCode::Parse,
+                     std::string("OpenCASCADE failed projecting nodes onto the model: ") + failure.GetMessageString(),
+                     path);
+  }
+  return report;
+}
+
+}  // namespace qualmesh

@@ -1,0 +1,66 @@
+// Second-order (10-node) tetrahedra and checked node moves: what turns QualMesh's linear mesh into the quadratic
+// mesh a structural solver wants (linear tets are far too stiff in bending), and what lets the CAD front end move
+// boundary nodes onto curved CAD faces without inverting or badly distorting an element.
+//
+// The 10-node tetrahedron (TetMesh::tet_mid) maps barycentric coordinates L0..L3 to
+//   x(L) = sum_i L_i (2 L_i - 1) x_i + sum_{i<j} 4 L_i L_j x_ij,
+// and its Jacobian determinant det(dx/d(L1, L2, L3)) equals 6 times the volume of the straight tetrahedron when
+// every mid node sits at its edge's midpoint. The checks below evaluate it at the ten nodes, as solvers and
+// pre-processors (CalculiX, Abaqus, ANSYS's "Jacobian ratio") do.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "qualmesh/tet_mesh.h"
+
+namespace qualmesh {
+
+// Adds one node at the midpoint of every distinct edge of the tetrahedra (shared between the elements that have
+// it) and fills tet_mid, face_mid and edge_mid (tet_mesh.h). Mid nodes are appended to `points` after the corners,
+// numbered in the order of first appearance over the tets' edges, so the result is deterministic. A mesh that is
+// already second order is left as it is. Throws std::invalid_argument when a face or edge is not an edge set of
+// the tetrahedra (a face whose edges no tet has).
+void make_second_order(TetMesh& mesh);
+
+// Jacobian determinant of 10-node tetrahedron t at its ten nodes (tet_mid must be filled).
+struct Tet10Jacobian {
+  double min_det = 0;
+  double max_det = 0;
+  // min_det / max_det when max_det > 0, else 0 (-inf.. for inverted ones is clamped: a non-positive min gives a
+  // ratio <= 0).
+  double ratio() const { return max_det > 0 ? min_det / max_det : 0; }
+};
+Tet10Jacobian tet10_jacobian(const TetMesh& mesh, std::size_t t);
+
+struct NodeMove {
+  Index node = 0;
+  Point3 target{};
+};
+
+struct NodeMoveOptions {
+  // A second-order element is acceptable when its Jacobian is positive at all ten nodes and
+  // min/max >= min_jacobian_ratio.
+  double min_jacobian_ratio = 0.1;
+  // A linear element is acceptable when its volume stays positive and at least this fraction of its volume before
+  // the move (a move onto a curved face of at most the chordal deflection never needs more).
+  double min_volume_fraction = 0.2;
+};
+
+struct NodeMoveReport {
+  std::size_t num_requested = 0;  // moves asked for
+  std::size_t num_full = 0;       // made in full: the node is at its target
+  std::size_t num_partial = 0;    // made part of the way (an element would have been unacceptable at the target)
+  std::size_t num_refused = 0;    // not made at all
+  double max_distance_left = 0;   // largest distance between a node and its target after the moves, model units
+  std::size_t num_bad_elements = 0;  // elements unacceptable after all moves (before any move they all were fine)
+  double min_jacobian_ratio = 1;  // over all second-order elements after the moves (1 for a linear mesh)
+};
+
+// Moves each node towards its target, in the order given, keeping every element that has the node acceptable
+// (NodeMoveOptions): the full move when that is acceptable, else the largest of 3/4, 1/2, 1/4 of it that is, else
+// none. An element that was unacceptable before a move only has to get no worse. Mutates mesh.points only.
+NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& moves,
+                                  const NodeMoveOptions& options = {});
+
+}  // namespace qualmesh

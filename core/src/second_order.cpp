@@ -1,0 +1,171 @@
+// Second-order tetrahedra and checked node moves (second_order.h).
+#include "qualmesh/second_order.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace qualmesh {
+namespace {
+
+std::uint64_t edge_key(Index a, Index b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t(a) << 32) | b;
+}
+
+Point3 midpoint(const Point3& a, const Point3& b) {
+  return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+}
+
+double det3(const Point3& a, const Point3& b, const Point3& c) {
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+double signed_volume6(const TetMesh& mesh, std::size_t t) {
+  const auto& v = mesh.tets[t];
+  const Point3 &p0 = mesh.points[v[0]], &p1 = mesh.points[v[1]], &p2 = mesh.points[v[2]], &p3 = mesh.points[v[3]];
+  const Point3 a{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+  const Point3 b{p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+  const Point3 c{p3[0] - p0[0], p3[1] - p0[1], p3[2] - p0[2]};
+  return det3(a, b, c);
+}
+
+// Index of the mid node of corners (i, j) in tet_mid order.
+int mid_slot(int i, int j) {
+  if (i > j) std::swap(i, j);
+  for (int k = 0; k < 6; ++k)
+    if (kTetEdges[k][0] == i && kTetEdges[k][1] == j) return k;
+  return -1;
+}
+
+// Acceptance measure of element t: for second order the Jacobian ratio (<= 0: inverted), for linear the volume.
+double element_measure(const TetMesh& mesh, std::size_t t) {
+  return mesh.is_second_order() ? tet10_jacobian(mesh, t).ratio() : signed_volume6(mesh, t);
+}
+
+}  // namespace
+
+void make_second_order(TetMesh& mesh) {
+  if (mesh.is_second_order()) return;
+  std::unordered_map<std::uint64_t, Index> mid_of;
+  mid_of.reserve(mesh.tets.size() * 2);
+  const auto mid = [&](Index a, Index b) {
+    auto [it, added] = mid_of.try_emplace(edge_key(a, b), 0);
+    if (added) {
+      it->second = static_cast<Index>(mesh.points.size());
+      mesh.points.push_back(midpoint(mesh.points[a], mesh.points[b]));
+    }
+    return it->second;
+  };
+  mesh.tet_mid.resize(mesh.tets.size());
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& v = mesh.tets[t];
+    for (int k = 0; k < 6; ++k) mesh.tet_mid[t][k] = mid(v[kTetEdges[k][0]], v[kTetEdges[k][1]]);
+  }
+  const auto existing = [&](Index a, Index b, const char* what) {
+    const auto it = mid_of.find(edge_key(a, b));
+    if (it == mid_of.end())
+      throw std::invalid_argument(std::string("make_second_order: a ") + what + " edge is no tetrahedron edge");
+    return it->second;
+  };
+  mesh.face_mid.resize(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) mesh.face_mid[f][k] = existing(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3], "face");
+  mesh.edge_mid.resize(mesh.edges.size());
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) mesh.edge_mid[e] = existing(mesh.edges[e][0], mesh.edges[e][1], "CAD");
+}
+
+Tet10Jacobian tet10_jacobian(const TetMesh& mesh, std::size_t t) {
+  const auto& v = mesh.tets[t];
+  const auto& m = mesh.tet_mid[t];
+  const auto corner = [&](int i) -> const Point3& { return mesh.points[v[i]]; };
+  const auto mid = [&](int i, int j) -> const Point3& { return mesh.points[m[mid_slot(i, j)]]; };
+  // Evaluation points: the corners, then the edge midpoints.
+  double L[10][4] = {};
+  for (int i = 0; i < 4; ++i) L[i][i] = 1;
+  for (int k = 0; k < 6; ++k) L[4 + k][kTetEdges[k][0]] = L[4 + k][kTetEdges[k][1]] = 0.5;
+  Tet10Jacobian result;
+  result.min_det = INFINITY;
+  result.max_det = -INFINITY;
+  for (const auto& l : L) {
+    // d x / d L_a, treating the four barycentric coordinates as independent.
+    Point3 g[4];
+    for (int a = 0; a < 4; ++a) {
+      const double s = 4 * l[a] - 1;
+      Point3 d{s * corner(a)[0], s * corner(a)[1], s * corner(a)[2]};
+      for (int b = 0; b < 4; ++b) {
+        if (b == a) continue;
+        const Point3& x = mid(a, b);
+        for (int c = 0; c < 3; ++c) d[c] += 4 * l[b] * x[c];
+      }
+      g[a] = d;
+    }
+    // Columns d x / d xi_k = d x / d L_k - d x / d L_0 (L_0 = 1 - L_1 - L_2 - L_3).
+    Point3 col[3];
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) col[k][c] = g[k + 1][c] - g[0][c];
+    const double det = det3(col[0], col[1], col[2]);
+    result.min_det = std::min(result.min_det, det);
+    result.max_det = std::max(result.max_det, det);
+  }
+  return result;
+}
+
+NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& moves, const NodeMoveOptions& options) {
+  NodeMoveReport report;
+  report.num_requested = moves.size();
+  // Elements having each node (corner or mid node).
+  std::vector<std::vector<std::uint32_t>> elements_of(mesh.points.size());
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    for (Index v : mesh.tets[t]) elements_of[v].push_back(static_cast<std::uint32_t>(t));
+    if (mesh.is_second_order())
+      for (Index v : mesh.tet_mid[t]) elements_of[v].push_back(static_cast<std::uint32_t>(t));
+  }
+  const bool quadratic = mesh.is_second_order();
+  const auto acceptable = [&](std::size_t t, double before) {
+    const double now = element_measure(mesh, t);
+    const double bar = quadratic ? options.min_jacobian_ratio : options.min_volume_fraction * before;
+    if (before <= 0 || (quadratic && before < options.min_jacobian_ratio)) return now >= before;  // no worse
+    return now > 0 && now >= bar;
+  };
+  std::vector<double> before;
+  for (const NodeMove& move : moves) {
+    Point3& p = mesh.points[move.node];
+    const Point3 start = p;
+    const auto& elements = elements_of[move.node];
+    before.resize(elements.size());
+    for (std::size_t i = 0; i < elements.size(); ++i) before[i] = element_measure(mesh, elements[i]);
+    double done = 0;
+    for (double fraction : {1.0, 0.75, 0.5, 0.25}) {
+      for (int c = 0; c < 3; ++c) p[c] = start[c] + fraction * (move.target[c] - start[c]);
+      bool ok = true;
+      for (std::size_t i = 0; i < elements.size() && ok; ++i) ok = acceptable(elements[i], before[i]);
+      if (ok) {
+        done = fraction;
+        break;
+      }
+    }
+    if (done == 0) p = start;
+    if (done == 1) ++report.num_full;
+    else if (done > 0) ++report.num_partial;
+    else ++report.num_refused;
+    const double left = std::sqrt((move.target[0] - p[0]) * (move.target[0] - p[0]) +
+                                  (move.target[1] - p[1]) * (move.target[1] - p[1]) +
+                                  (move.target[2] - p[2]) * (move.target[2] - p[2]));
+    report.max_distance_left = std::max(report.max_distance_left, left);
+  }
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const double measure = element_measure(mesh, t);
+    if (quadratic) {
+      report.min_jacobian_ratio = std::min(report.min_jacobian_ratio, measure);
+      if (measure < options.min_jacobian_ratio) ++report.num_bad_elements;
+    } else if (measure <= 0) {
+      ++report.num_bad_elements;
+    }
+  }
+  return report;
+}
+
+}  // namespace qualmesh

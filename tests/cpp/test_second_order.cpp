@@ -1,0 +1,195 @@
+// Second-order tetrahedra and checked node moves (second_order.h), and fitting meshes onto their CAD model
+// (cad_import.h, fit_mesh_to_cad): mid nodes at midpoints and shared, the ten-node Jacobian against the straight
+// tet's 6V, inversions caught, moves relaxed instead of inverting, and on real CAD every boundary node and mid node
+// on its CAD face (measured independently by OpenCASCADE's BRepExtrema through distances_to_cad_faces).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "qualmesh/cad_import.h"
+#include "qualmesh/mesher.h"
+#include "qualmesh/second_order.h"
+#include "test_support.h"
+
+namespace qualmesh {
+namespace {
+
+// The unit cube split into 6 tetrahedra around the diagonal (0,0,0)-(1,1,1), positively oriented, with its 12
+// boundary triangles (marker = 1 + axis-face index) and the 12 cube edges (marker = 1 + edge index).
+TetMesh cube_mesh() {
+  TetMesh m;
+  for (int i = 0; i < 8; ++i) m.points.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  const int paths[6][2] = {{1, 3}, {1, 5}, {2, 3}, {2, 6}, {4, 5}, {4, 6}};
+  for (const auto& p : paths) {
+    std::array<Index, 4> t{0, Index(p[0]), Index(p[0] | p[1]), 7};
+    const Point3 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]], &d = m.points[t[3]];
+    const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2], vx = c[0] - a[0], vy = c[1] - a[1],
+                 vz = c[2] - a[2], wx = d[0] - a[0], wy = d[1] - a[1], wz = d[2] - a[2];
+    const double det = ux * (vy * wz - vz * wy) - uy * (vx * wz - vz * wx) + uz * (vx * wy - vy * wx);
+    if (det < 0) std::swap(t[1], t[2]);
+    m.tets.push_back(t);
+  }
+  // Boundary faces: every tet face used once.
+  std::map<std::array<Index, 3>, int> count;
+  for (const auto& t : m.tets)
+    for (int k = 0; k < 4; ++k) {
+      std::array<Index, 3> f{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]};
+      std::sort(f.begin(), f.end());
+      ++count[f];
+    }
+  for (const auto& [f, n] : count)
+    if (n == 1) {
+      m.faces.push_back(f);
+      m.face_marker.push_back(1);
+      m.face_facet.push_back(0);
+    }
+  for (Index a = 0; a < 8; ++a)
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(a & (1 << axis))) {
+        m.edges.push_back({a, Index(a | (1 << axis))});
+        m.edge_marker.push_back(int(m.edges.size()));
+      }
+  return m;
+}
+
+TEST(SecondOrder, MidNodesAreSharedMidpoints) {
+  TetMesh m = cube_mesh();
+  make_second_order(m);
+  ASSERT_TRUE(m.is_second_order());
+  // 19 distinct edges in the 6-tet cube: 12 cube edges, 6 face diagonals, 1 body diagonal.
+  EXPECT_EQ(m.points.size(), 8u + 19u);
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    for (int k = 0; k < 6; ++k) {
+      const Point3& a = m.points[m.tets[t][kTetEdges[k][0]]];
+      const Point3& b = m.points[m.tets[t][kTetEdges[k][1]]];
+      const Point3& x = m.points[m.tet_mid[t][k]];
+      for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(x[c], 0.5 * (a[c] + b[c]));
+    }
+  ASSERT_EQ(m.face_mid.size(), m.faces.size());
+  ASSERT_EQ(m.edge_mid.size(), m.edges.size());
+  for (std::size_t e = 0; e < m.edges.size(); ++e) {
+    const Point3& x = m.points[m.edge_mid[e]];
+    const Point3& a = m.points[m.edges[e][0]];
+    const Point3& b = m.points[m.edges[e][1]];
+    for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(x[c], 0.5 * (a[c] + b[c]));
+  }
+  // Idempotent.
+  make_second_order(m);
+  EXPECT_EQ(m.points.size(), 27u);
+}
+
+TEST(SecondOrder, StraightTetJacobianIsSixVolumeEverywhere) {
+  TetMesh m = cube_mesh();
+  make_second_order(m);
+  for (std::size_t t = 0; t < m.tets.size(); ++t) {
+    const Tet10Jacobian j = tet10_jacobian(m, t);
+    EXPECT_NEAR(j.min_det, 1.0, 1e-12);  // each tet has volume 1/6
+    EXPECT_NEAR(j.max_det, 1.0, 1e-12);
+    EXPECT_NEAR(j.ratio(), 1.0, 1e-12);
+  }
+}
+
+TEST(SecondOrder, AMidNodePushedThroughTheOppositeFaceInvertsTheElement) {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.tets = {{0, 1, 2, 3}};
+  make_second_order(m);
+  // Mid node of edge (0,1) moved far beyond the opposite face: the Jacobian turns negative at a corner.
+  Point3& x = m.points[m.tet_mid[0][0]];
+  x = {0.5, 0.9, 0.9};
+  const Tet10Jacobian j = tet10_jacobian(m, 0);
+  EXPECT_LT(j.min_det, 0);
+  EXPECT_LE(j.ratio(), 0);
+}
+
+TEST(SecondOrder, MovesThatWouldInvertAreRelaxedOrRefused) {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.tets = {{0, 1, 2, 3}};
+  make_second_order(m);
+  const Index mid01 = m.tet_mid[0][0];
+  // A small bulge is fine in full; a huge one is not made in full, and the element stays acceptable.
+  NodeMoveReport small = move_nodes_checked(m, {{mid01, {0.5, -0.05, 0}}});
+  EXPECT_EQ(small.num_full, 1u);
+  EXPECT_EQ(small.num_bad_elements, 0u);
+  NodeMoveReport big = move_nodes_checked(m, {{mid01, {0.5, 5, 5}}});
+  EXPECT_EQ(big.num_full, 0u);
+  EXPECT_EQ(big.num_partial + big.num_refused, 1u);
+  EXPECT_GT(big.max_distance_left, 1);
+  EXPECT_GE(tet10_jacobian(m, 0).ratio(), NodeMoveOptions{}.min_jacobian_ratio);
+  // Linear: a corner moved through the opposite face is refused, the tet keeps a positive volume.
+  TetMesh lin;
+  lin.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  lin.tets = {{0, 1, 2, 3}};
+  NodeMoveReport flip = move_nodes_checked(lin, {{3, {0, 0, -1}}});
+  EXPECT_EQ(flip.num_full, 0u);
+  EXPECT_EQ(flip.num_bad_elements, 0u);
+  EXPECT_GT(lin.points[3][2], 0);
+}
+
+// Meshes a real CAD part, fits it, and measures each boundary node's distance to its CAD face independently.
+void expect_fitted_onto_cad(const std::string& file, bool second_order) {
+  const std::string path = test::shared_path("data/cad/" + file);
+  QM_REQUIRE_FILE(path);
+  const CadModel model = read_cad(path);
+  MeshOptions options;
+  options.pump = false;  // the fit does not depend on pumping; keep the test short
+  MeshResult result = mesh_plc(model.plc, options);
+  TetMesh& mesh = result.mesh;
+  CadFitOptions fit;
+  fit.second_order = second_order;
+  const CadFitReport report = fit_mesh_to_cad(path, CadOptions{}, mesh, fit);
+  EXPECT_GT(report.num_corner_targets, 0u);
+  // Every boundary node and mid node whose move was made in full lies on its CAD face within 1e-7 of the diagonal.
+  BoundingBox box;
+  for (const Point3& p : mesh.points) box.add(p);
+  const double diagonal = std::sqrt((box.max[0] - box.min[0]) * (box.max[0] - box.min[0]) +
+                                    (box.max[1] - box.min[1]) * (box.max[1] - box.min[1]) +
+                                    (box.max[2] - box.min[2]) * (box.max[2] - box.min[2]));
+  const std::vector<int> labels = face_labels(mesh);
+  std::vector<Point3> points;
+  std::vector<int> faces;
+  std::set<std::pair<Index, int>> seen;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    std::vector<Index> nodes(mesh.faces[f].begin(), mesh.faces[f].end());
+    if (second_order) nodes.insert(nodes.end(), mesh.face_mid[f].begin(), mesh.face_mid[f].end());
+    for (Index v : nodes)
+      if (seen.insert({v, labels[f]}).second) {
+        points.push_back(mesh.points[v]);
+        faces.push_back(labels[f]);
+      }
+  }
+  const std::vector<double> d = distances_to_cad_faces(path, points, faces);
+  // A node on a CAD edge lies on the edge's curve, which is within the edge's tolerance of its faces (up to 1e-2 in
+  // STEP files): it is judged against the face's tolerance (CadSummary::face_tolerances), every other node against
+  // 1e-7 of the diagonal.
+  std::set<Point3> on_edge;
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    for (Index v : mesh.edges[e]) on_edge.insert(mesh.points[v]);
+    if (second_order) on_edge.insert(mesh.points[mesh.edge_mid[e]]);
+  }
+  std::size_t off = 0;
+  double worst = 0;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const double allowed = on_edge.count(points[i]) ? model.summary.face_tolerances[faces[i] - 1] : 1e-7 * diagonal;
+    worst = std::max(worst, d[i]);
+    if (d[i] > allowed) ++off;
+  }
+  const std::size_t not_full = report.corners.num_partial + report.corners.num_refused +
+                               report.mids.num_partial + report.mids.num_refused;
+  EXPECT_LE(off, not_full) << "worst distance " << worst;
+  EXPECT_EQ(report.corners.num_bad_elements, 0u);
+  if (second_order) {
+    EXPECT_EQ(report.mids.num_bad_elements, 0u);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) EXPECT_GT(tet10_jacobian(mesh, t).min_det, 0) << t;
+  }
+}
+
+TEST(CadFit, PartStepLinear) { expect_fitted_onto_cad("part.step", false); }
+TEST(CadFit, PartStepSecondOrder) { expect_fitted_onto_cad("part.step", true); }
+
+}  // namespace
+}  // namespace qualmesh
