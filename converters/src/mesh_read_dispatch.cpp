@@ -16,8 +16,7 @@ TetMesh read_tet_mesh(const std::string& path) {
     case MeshFormat::Gmsh41: mesh = io::read_gmsh(path); break;
     case MeshFormat::Medit: mesh = io::read_medit(path); break;
     case MeshFormat::Vtu: mesh = io::read_vtu(path); break;
-    case MeshFormat::Abaqus:
-      throw InputError(ErrorCode::Unsupported, "reading Abaqus .inp meshes is not supported", path);
+    case MeshFormat::Abaqus: mesh = io::read_abaqus(path); break;
   }
   io::check_mesh_indices(mesh, path);
   return mesh;
@@ -63,6 +62,19 @@ void check_mesh_indices(const TetMesh& mesh, const std::string& file) {
                          file);
       }
     }
+  }
+  const auto check = [&](Index v, const char* what, std::size_t i) {
+    if (v >= n) {
+      throw InputError(ErrorCode::IndexOutOfRange, std::string(what) + " " + std::to_string(i) +
+                                                       " refers to a missing vertex", file);
+    }
+  };
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) for (Index v : mesh.edges[e]) check(v, "edge", e);
+  for (std::size_t t = 0; t < mesh.tet_mid.size(); ++t) for (Index v : mesh.tet_mid[t]) check(v, "tetrahedron", t);
+  for (std::size_t f = 0; f < mesh.face_mid.size(); ++f) for (Index v : mesh.face_mid[f]) check(v, "face", f);
+  for (std::size_t e = 0; e < mesh.edge_mid.size(); ++e) check(mesh.edge_mid[e], "edge", e);
+  if (!mesh.tet_mid.empty() && mesh.tet_mid.size() != mesh.tets.size()) {
+    throw InputError(ErrorCode::Parse, "mixed linear and quadratic tetrahedra", file);
   }
 }
 

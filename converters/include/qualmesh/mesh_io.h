@@ -23,7 +23,7 @@ enum class MeshFormat {
   TetGen,  // BASE.node, BASE.ele (region as the tetrahedron attribute), BASE.face (facet marker)
   Gmsh41,  // Gmsh .msh 4.1 ASCII; one volume physical "Region<attr>" per region, one surface physical "Face<m>"
   Medit,   // Medit .mesh; region = tetrahedron reference, face marker = triangle reference
-  Abaqus,  // Abaqus / CalculiX .inp; C3D4, one ELSET "Region<attr>" per region, *SURFACE "Face<m>" per marker
+  Abaqus,  // Abaqus / CalculiX .inp; C3D4 / C3D10, ELSET Solid<r>, NSET + element *SURFACE Face<m>, NSET Edge<e>
 };
 
 // The format of a mesh file by its extension: .vtu, .node / .ele (TetGen), .msh, .mesh, .inp.
@@ -43,7 +43,8 @@ void write_tet_mesh(const TetMesh& mesh, const std::string& path, MeshFormat for
 // (ASCII). Second-order elements are read as their four (three) corner nodes. Regions: TetGen's first tetrahedron
 // attribute, Gmsh's volume physical tag (or the n of a physical named "Region<n>"; else the entity tag), Medit's
 // reference, VTU's "region" array. Face markers likewise (TetGen boundary marker, Gmsh surface physical or
-// "Face<n>", Medit reference). face_facet is -1 for every face read. .inp files are not read.
+// "Face<n>", Medit reference). face_facet is -1 for every face read. Abaqus .inp: C3D4 / C3D10 (ELSET Solid<n> or
+// Region<n> -> region), element *SURFACE Face<n> -> faces (mesh_read_abaqus.cpp).
 // Throws InputError (Io, Parse, Unsupported, IndexOutOfRange, NonFinite) with the file and line.
 TetMesh read_tet_mesh(const std::string& path);
 

@@ -1,0 +1,93 @@
+// Small hand-built meshes for the reader and writer tests: Kuhn's 6-tetrahedron cube with two regions and its
+// hull triangles (sample_mesh), and the same made second order with mid-nodes at the edge midpoints, plus the
+// tetrahedron edges on the cube's 12 edges as marked edges (sample_mesh_quadratic).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <utility>
+
+#include "qualmesh/quality.h"
+#include "qualmesh/tet_mesh.h"
+
+namespace qualmesh {
+
+// Kuhn's 6-tetrahedron unit cube, scaled by awkward numbers so that exact coordinate round trips are tested; two
+// regions, the 12 hull triangles with the cube face (1..6) as marker and facet index.
+inline TetMesh sample_mesh() {
+  TetMesh mesh;
+  for (int v = 0; v < 8; ++v) {
+    mesh.points.push_back({0.1 + (v & 1) / 3.0, -7.25 + ((v >> 1) & 1) * 1e-3 * 3.3, 1e10 + ((v >> 2) & 1) * 0.7});
+  }
+  int axes[3] = {0, 1, 2};
+  do {
+    const Index a = 1u << axes[0];
+    const Index b = a | (1u << axes[1]);
+    std::array<Index, 4> t{0, a, b, 7};
+    const auto& p = mesh.points;
+    if (tet_signed_volume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) < 0) std::swap(t[0], t[1]);
+    mesh.tets.push_back(t);
+  } while (std::next_permutation(axes, axes + 3));
+  mesh.tet_region = {1, 1, 1, 7, 7, 7};
+  // Hull triangles: for each tetrahedron face whose vertices share a coordinate bit.
+  for (const auto& t : mesh.tets) {
+    static const int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    for (const auto& f : kFaces) {
+      const Index a = t[f[0]], b = t[f[1]], c = t[f[2]];
+      for (int bit = 0; bit < 3; ++bit) {
+        for (int value = 0; value < 2; ++value) {
+          const auto has = [&](Index v) { return static_cast<int>((v >> bit) & 1) == value; };
+          if (has(a) && has(b) && has(c)) {
+            mesh.faces.push_back({a, b, c});
+            mesh.face_facet.push_back(2 * bit + value);
+            mesh.face_marker.push_back(2 * bit + value + 1);
+          }
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+// Marks the tetrahedron edges along the cube's edges (the two vertices differ in one coordinate bit) with marker
+// 1 + 4 * bit + (the other two bits), then adds a mid-node at the midpoint of every tetrahedron edge (shared) and
+// fills tet_mid, face_mid and edge_mid.
+inline TetMesh sample_mesh_quadratic(bool with_edges = true) {
+  TetMesh mesh = sample_mesh();
+  std::map<std::pair<Index, Index>, Index> mid;
+  const auto mid_of = [&](Index a, Index b) {
+    const auto key = std::minmax(a, b);
+    const auto it = mid.find(key);
+    if (it != mid.end()) return it->second;
+    const Point3& p = mesh.points[a];
+    const Point3& q = mesh.points[b];
+    mesh.points.push_back({(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2});
+    return mid[key] = static_cast<Index>(mesh.points.size() - 1);
+  };
+  for (const auto& t : mesh.tets) {
+    std::array<Index, 6> m{};
+    for (int k = 0; k < 6; ++k) m[k] = mid_of(t[kTetEdges[k][0]], t[kTetEdges[k][1]]);
+    mesh.tet_mid.push_back(m);
+    for (int k = 0; k < 6; ++k) {
+      const Index a = t[kTetEdges[k][0]], b = t[kTetEdges[k][1]];
+      const Index x = a ^ b;
+      if (!with_edges || (x != 1 && x != 2 && x != 4)) continue;
+      const int bit = x == 1 ? 0 : x == 2 ? 1 : 2;
+      const std::array<Index, 2> e{std::min(a, b), std::max(a, b)};
+      if (std::find(mesh.edges.begin(), mesh.edges.end(), e) != mesh.edges.end()) continue;
+      const Index rest = a & ~x;
+      int others = 0, shift = 0;
+      for (int c = 0; c < 3; ++c) {
+        if (c != bit) others |= static_cast<int>((rest >> c) & 1) << shift++;
+      }
+      mesh.edges.push_back(e);
+      mesh.edge_marker.push_back(1 + 4 * bit + others);
+    }
+  }
+  for (const auto& f : mesh.faces) mesh.face_mid.push_back({mid_of(f[0], f[1]), mid_of(f[1], f[2]), mid_of(f[2], f[0])});
+  for (const auto& e : mesh.edges) mesh.edge_mid.push_back(mid_of(e[0], e[1]));
+  return mesh;
+}
+
+}  // namespace qualmesh

@@ -1,0 +1,178 @@
+// Tests of the group-carrying writers and the readers of issue 14 (mesh_io.h): Abaqus/CalculiX .inp (short numbers,
+// C3D10, Solid/Face/Edge sets, reading our decks and FreeCAD-style ones), UNV, Gmsh 4.1 second order, VTU face
+// cells, the Elmer mesh directory and Medit P2, on the hand-built cube meshes of sample_meshes.h (linear and second
+// order, mid-nodes at the edge midpoints). Independent readers (ccx, meshio, gmsh, FreeCAD) are exercised by
+// tests/python/test_writers_groups.py.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "mesh_groups.h"
+#include "qualmesh/error.h"
+#include "qualmesh/mesh_io.h"
+#include "qualmesh/quality.h"
+#include "sample_meshes.h"
+#include "test_support.h"
+
+namespace qualmesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+std::array<Index, 3> sorted3(std::array<Index, 3> f) {
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+// Faces as a set of (sorted corners -> marker).
+std::map<std::array<Index, 3>, int> face_set(const TetMesh& mesh) {
+  std::map<std::array<Index, 3>, int> faces;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) faces[sorted3(mesh.faces[f])] = mesh.face_marker[f];
+  return faces;
+}
+
+void expect_same_points_and_tets(const TetMesh& a, const TetMesh& b) {
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) EXPECT_EQ(a.points[i], b.points[i]) << "point " << i;
+  EXPECT_EQ(a.tets, b.tets);
+  EXPECT_EQ(a.tet_mid, b.tet_mid);
+  std::vector<int> labels_a, labels_b;
+  for (std::size_t t = 0; t < a.tets.size(); ++t) labels_a.push_back(tet_region_label(a, t));
+  for (std::size_t t = 0; t < b.tets.size(); ++t) labels_b.push_back(tet_region_label(b, t));
+  EXPECT_EQ(labels_a, labels_b);
+}
+
+// Every face mid-node of `mesh` is the tet mid-node of the same edge, and sits at that edge's midpoint.
+void expect_mid_nodes_at_midpoints(const TetMesh& mesh) {
+  const auto at_mid = [&](Index a, Index b, Index m) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_DOUBLE_EQ(mesh.points[m][c], (mesh.points[a][c] + mesh.points[b][c]) / 2) << a << "-" << b;
+    }
+  };
+  ASSERT_EQ(mesh.tet_mid.size(), mesh.tets.size());
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    for (int k = 0; k < 6; ++k) at_mid(mesh.tets[t][kTetEdges[k][0]], mesh.tets[t][kTetEdges[k][1]], mesh.tet_mid[t][k]);
+  }
+  for (std::size_t f = 0; f < mesh.face_mid.size(); ++f) {
+    for (int k = 0; k < 3; ++k) at_mid(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3], mesh.face_mid[f][k]);
+  }
+  for (std::size_t e = 0; e < mesh.edge_mid.size(); ++e) at_mid(mesh.edges[e][0], mesh.edges[e][1], mesh.edge_mid[e]);
+}
+
+TEST(ShortDouble, AtMostTwentyCharactersAndFourteenDigits) {
+  const double values[] = {2.6056314875475606E-15, -2.6056314875475606E-15, -1.2345678901234567e-300, 1e22 / 3,
+                           -0.00012345678901234567, 0.1 + 1 / 3.0, 1e10 + 0.7, 0.0, -0.0, 5e-324, 1.7976931348623157e308,
+                           -123456789.12345678};
+  for (double v : values) {
+    const std::string s = io::short_double(v);
+    EXPECT_LE(s.size(), 20u) << s;
+    const double back = std::strtod(s.c_str(), nullptr);
+    EXPECT_LE(std::fabs(back - v), 5e-13 * std::fabs(v)) << s;  // 13 significant digits at least
+  }
+  EXPECT_EQ(io::short_double(0.5), "0.5");
+  EXPECT_EQ(io::short_double(0.1 + 1 / 3.0), "0.43333333333333335");  // shortest exact form when it fits
+}
+
+TEST(MeshIoAbaqus, LinearRoundTripKeepsSetsAndFaces) {
+  const auto dir = test::temp_dir("io-inp-linear");
+  const TetMesh mesh = sample_mesh();
+  write_tet_mesh(mesh, (dir / "m.inp").string());
+  const TetMesh back = read_tet_mesh((dir / "m.inp").string());
+  expect_same_points_and_tets(mesh, back);
+  EXPECT_EQ(face_set(back), face_set(mesh));
+  // Surfaces read back as faces whose normal points out of their tetrahedron.
+  for (const auto& f : back.faces) {
+    const Point3 c{0.1 + 1 / 6.0, -7.25 + 1.65e-3, 1e10 + 0.35};
+    EXPECT_LT(tet_signed_volume(back.points[f[0]], back.points[f[1]], back.points[f[2]], c), 0);
+  }
+  const std::string text = slurp(dir / "m.inp");
+  EXPECT_NE(text.find("*NSET, NSET=Face1\n"), std::string::npos);
+  EXPECT_EQ(text.find("Region"), std::string::npos);
+}
+
+TEST(MeshIoAbaqus, SecondOrderRoundTrip) {
+  const auto dir = test::temp_dir("io-inp-quadratic");
+  const TetMesh mesh = sample_mesh_quadratic();
+  write_tet_mesh(mesh, (dir / "m.inp").string());
+  const std::string text = slurp(dir / "m.inp");
+  EXPECT_NE(text.find("*ELEMENT, TYPE=C3D10, ELSET=Solid7\n"), std::string::npos);
+  EXPECT_NE(text.find("*NSET, NSET=Edge1\n"), std::string::npos);
+  // Face1 = cube face x = min: 4 corners, 5 edges (4 sides + 1 diagonal) -> 9 nodes.
+  const std::size_t at = text.find("*NSET, NSET=Face1\n");
+  ASSERT_NE(at, std::string::npos);
+  const std::string block = text.substr(at, text.find('*', at + 1) - at);
+  EXPECT_EQ(std::count(block.begin(), block.end(), ',') + std::count(block.begin(), block.end(), '\n'), 9 + 2);
+  const TetMesh back = read_tet_mesh((dir / "m.inp").string());
+  expect_same_points_and_tets(mesh, back);
+  EXPECT_EQ(face_set(back), face_set(mesh));
+  expect_mid_nodes_at_midpoints(back);
+}
+
+TEST(MeshIoAbaqus, ReadsFreeCadStyleDeck) {
+  const auto dir = test::temp_dir("io-inp-freecad");
+  // Lower-case keywords, comments, a continuation line, GENERATE, sets by name, a shell element and a surface on
+  // an element set, as FreeCAD's and Gmsh's writers produce them.
+  write_text(dir / "fc.inp",
+             "** written by FreeCAD\n*Node, NSET=Nall\n1, 0, 0, 0\n2, 1.0D0, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n"
+             "5, 0.5, 0, 0\n6, 0.5, 0.5, 0\n7, 0, 0.5, 0\n8, 0, 0, 0.5\n9, 0.5, 0, 0.5\n10, 0, 0.5, 0.5\n"
+             "** Volume elements\n*element, type=C3D10, elset=Evolumes\n11, 1, 2, 3, 4, 5, 6,\n 7, 8, 9, 10\n"
+             "*Element, TYPE=S6, ELSET=Efaces\n20, 1, 3, 2, 7, 6, 5\n"
+             "*ELSET, ELSET=Solid3, GENERATE\n11, 11, 1\n*ELSET,ELSET=Face5\nEfaces\n"
+             "*ELSET, ELSET=Ebottom\n11\n*Surface, Name=Face9, type=Element\nEbottom, S1\n11, S2\n"
+             "*Nset, Nset=Face9\n1, 2, 3, 5, 6, 7\n*STEP\n*STATIC\n*END STEP\n");
+  const TetMesh mesh = read_tet_mesh((dir / "fc.inp").string());
+  ASSERT_EQ(mesh.tets.size(), 1u);
+  EXPECT_EQ(mesh.tets[0], (std::array<Index, 4>{0, 1, 2, 3}));
+  EXPECT_EQ(mesh.tet_region, std::vector<int>{3});
+  EXPECT_EQ(mesh.points[1][0], 1.0);
+  ASSERT_EQ(mesh.tet_mid.size(), 1u);
+  expect_mid_nodes_at_midpoints(mesh);
+  ASSERT_EQ(mesh.faces.size(), 3u);
+  EXPECT_EQ(mesh.face_marker, (std::vector<int>{5, 9, 9}));
+  EXPECT_EQ(sorted3(mesh.faces[1]), (std::array<Index, 3>{0, 1, 2}));  // S1 = 1-2-3
+  EXPECT_EQ(sorted3(mesh.faces[2]), (std::array<Index, 3>{0, 1, 3}));  // S2 = 1-4-2
+  EXPECT_EQ(mesh.face_mid.size(), 3u);
+}
+
+TEST(MeshIoAbaqus, ErrorsNameFileAndLine) {
+  const auto dir = test::temp_dir("io-inp-errors");
+  const auto expect_error = [&](const std::string& text, ErrorCode code, long line) {
+    write_text(dir / "bad.inp", text);
+    try {
+      read_tet_mesh((dir / "bad.inp").string());
+      ADD_FAILURE() << "no exception for:\n" << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.code(), code) << e.what();
+      EXPECT_EQ(e.line(), line) << e.what();
+      EXPECT_NE(e.file().find("bad.inp"), std::string::npos) << e.what();
+    }
+  };
+  const std::string nodes = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n";
+  expect_error(nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 9\n", ErrorCode::IndexOutOfRange, 7);
+  expect_error(nodes + "*ELEMENT, TYPE=C3D8\n1, 1, 2, 3, 4, 1, 2, 3, 4\n", ErrorCode::Unsupported, 7);
+  expect_error(nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3\n", ErrorCode::Parse, 7);
+  expect_error("*NODE\n1, 0, zero, 0\n", ErrorCode::Parse, 2);
+  expect_error("1, 0, 0, 0\n", ErrorCode::Parse, 1);
+  expect_error(nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n*SURFACE, NAME=S\n1, S7\n", ErrorCode::Parse, 9);
+}
+
+}  // namespace
+}  // namespace qualmesh
