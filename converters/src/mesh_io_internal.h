@@ -140,11 +140,13 @@ void write_tetgen(const TetMesh& mesh, const std::string& base);
 void write_gmsh41(const TetMesh& mesh, const std::string& path);
 void write_medit(const TetMesh& mesh, const std::string& path);
 void write_abaqus(const TetMesh& mesh, const std::string& path);
+void write_unv(const TetMesh& mesh, const std::string& path);
 TetMesh read_tetgen(const std::string& base);
 TetMesh read_gmsh(const std::string& path);
 TetMesh read_medit(const std::string& path);
 TetMesh read_vtu(const std::string& path);
 TetMesh read_abaqus(const std::string& path);
+TetMesh read_unv(const std::string& path);
 
 // "dir/name.ext" -> "dir/name"; "dir/name" unchanged.
 std::string strip_extension(const std::string& path);

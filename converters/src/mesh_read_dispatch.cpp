@@ -17,6 +17,7 @@ TetMesh read_tet_mesh(const std::string& path) {
     case MeshFormat::Medit: mesh = io::read_medit(path); break;
     case MeshFormat::Vtu: mesh = io::read_vtu(path); break;
     case MeshFormat::Abaqus: mesh = io::read_abaqus(path); break;
+    case MeshFormat::Unv: mesh = io::read_unv(path); break;
   }
   io::check_mesh_indices(mesh, path);
   return mesh;

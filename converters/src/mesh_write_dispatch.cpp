@@ -21,6 +21,7 @@ bool format_of_extension(const std::string& ext, MeshFormat& format) {
   else if (ext == ".msh") format = MeshFormat::Gmsh41;
   else if (ext == ".mesh") format = MeshFormat::Medit;
   else if (ext == ".inp") format = MeshFormat::Abaqus;
+  else if (ext == ".unv") format = MeshFormat::Unv;
   else return false;
   return true;
 }
@@ -31,7 +32,7 @@ MeshFormat mesh_format_from_path(const std::string& path) {
   MeshFormat format{};
   if (!format_of_extension(lower_extension(path), format)) {
     throw InputError(ErrorCode::Unsupported,
-                     "unknown mesh format (expected .vtu, .node, .ele, .msh, .mesh or .inp)", path);
+                     "unknown mesh format (expected .vtu, .node, .ele, .msh, .mesh, .inp or .unv)", path);
   }
   return format;
 }
@@ -56,6 +57,7 @@ void write_tet_mesh(const TetMesh& mesh, const std::string& path, MeshFormat for
     case MeshFormat::Gmsh41: io::write_gmsh41(mesh, path); return;
     case MeshFormat::Medit: io::write_medit(mesh, path); return;
     case MeshFormat::Abaqus: io::write_abaqus(mesh, path); return;
+    case MeshFormat::Unv: io::write_unv(mesh, path); return;
   }
 }
 

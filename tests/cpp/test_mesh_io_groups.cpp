@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -150,6 +151,72 @@ TEST(MeshIoAbaqus, ReadsFreeCadStyleDeck) {
   EXPECT_EQ(sorted3(mesh.faces[1]), (std::array<Index, 3>{0, 1, 2}));  // S1 = 1-2-3
   EXPECT_EQ(sorted3(mesh.faces[2]), (std::array<Index, 3>{0, 1, 3}));  // S2 = 1-4-2
   EXPECT_EQ(mesh.face_mid.size(), 3u);
+}
+
+// Edges as a set of (sorted ends -> marker).
+std::map<std::array<Index, 2>, int> edge_set(const TetMesh& mesh) {
+  std::map<std::array<Index, 2>, int> edges;
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    edges[{std::min(mesh.edges[e][0], mesh.edges[e][1]), std::max(mesh.edges[e][0], mesh.edges[e][1])}] =
+        mesh.edge_marker[e];
+  }
+  return edges;
+}
+
+TEST(MeshIoUnv, LinearAndSecondOrderRoundTrips) {
+  const auto dir = test::temp_dir("io-unv");
+  for (const TetMesh& mesh : {sample_mesh(), sample_mesh_quadratic()}) {
+    write_tet_mesh(mesh, (dir / "m.unv").string());
+    const TetMesh back = read_tet_mesh((dir / "m.unv").string());
+    expect_same_points_and_tets(mesh, back);  // %25.16E coordinates: exact
+    EXPECT_EQ(back.faces, mesh.faces);
+    EXPECT_EQ(back.face_marker, mesh.face_marker);
+    EXPECT_EQ(edge_set(back), edge_set(mesh));
+    if (mesh.is_second_order()) {
+      EXPECT_EQ(back.face_mid, mesh.face_mid);
+      expect_mid_nodes_at_midpoints(back);
+    }
+  }
+  const std::string text = slurp(dir / "m.unv");
+  for (const char* name : {"\nSolid1\n", "\nSolid7\n", "\nFace3\n", "\nFace3_Nodes\n", "\nEdge1\n", "\nEdge1_Nodes\n"}) {
+    EXPECT_NE(text.find(name), std::string::npos) << name;
+  }
+  EXPECT_NE(text.find("       118         2         1         7        10\n"), std::string::npos);
+}
+
+TEST(MeshIoUnv, ReadsFreeCadExport) {
+  // FreeCAD 0.20's FemMesh.write of a SMESH tet10 with nodes (smesh) 2 1 3 4 | 5 7 6 9 8 10 and a tri6 face.
+  const auto dir = test::temp_dir("io-unv-freecad");
+  std::string text = "    -1\n   164\n         1  SI: Meter (newton)         2\n"
+                     "    1.0000000000000000E+0    1.0000000000000000E+0    1.0000000000000000E+0\n"
+                     "    2.7314999999999998E+2\n    -1\n    -1\n  2411\n";
+  const double xyz[10][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5, 0, 0},
+                             {0.5, 0.5, 0}, {0, 0.5, 0}, {0, 0, 0.5}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+  for (int i = 0; i < 10; ++i) {
+    char line[200];
+    std::snprintf(line, sizeof line, "%10d%10d%10d%10d\n%25.16E%25.16E%25.16E\n", i + 1, 1, 1, 11, xyz[i][0],
+                  xyz[i][1], xyz[i][2]);
+    text += line;
+  }
+  text += "    -1\n    -1\n  2412\n"
+          "         2        42         2         1         7         6\n"
+          "         1         7         3         6         2         5\n"
+          "         1       118         2         1         7        10\n"
+          "         2         6         3         7         1         5         9        10\n"
+          "         8         4\n    -1\n    -1\n  2467\n"
+          "         1         0         0         0         0         0         0         1\nSolid4\n"
+          "         8         1         0         0\n"
+          "         2         0         0         0         0         0         0         1\nFace2_Faces\n"
+          "         8         2         0         0\n    -1\n";
+  write_text(dir / "fc.unv", text);
+  const TetMesh mesh = read_tet_mesh((dir / "fc.unv").string());
+  ASSERT_EQ(mesh.tets.size(), 1u);
+  const auto& p = mesh.points;
+  const auto& t = mesh.tets[0];
+  EXPECT_GT(tet_signed_volume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]), 0);  // SMESH's negative tet read positive
+  EXPECT_EQ(mesh.tet_region, std::vector<int>{4});
+  expect_mid_nodes_at_midpoints(mesh);
+  EXPECT_EQ(mesh.face_marker, std::vector<int>{2});
 }
 
 TEST(MeshIoAbaqus, ErrorsNameFileAndLine) {

@@ -24,6 +24,7 @@ enum class MeshFormat {
   Gmsh41,  // Gmsh .msh 4.1 ASCII; one volume physical "Region<attr>" per region, one surface physical "Face<m>"
   Medit,   // Medit .mesh; region = tetrahedron reference, face marker = triangle reference
   Abaqus,  // Abaqus / CalculiX .inp; C3D4 / C3D10, ELSET Solid<r>, NSET + element *SURFACE Face<m>, NSET Edge<e>
+  Unv,     // I-DEAS universal .unv (FreeCAD's native import); 2411 / 2412 / 2467 groups Solid<r>, Face<m>, Edge<e>
 };
 
 // The format of a mesh file by its extension: .vtu, .node / .ele (TetGen), .msh, .mesh, .inp.
