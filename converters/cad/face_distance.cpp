@@ -9,6 +9,8 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS_Shape.hxx>
 
+#include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <map>
 
@@ -46,6 +48,42 @@ std::vector<double> distances_to_cad_faces(const std::string& path, const std::v
   } catch (const Standard_Failure& failure) {
     throw InputError(ErrorCode::Parse, std::string("OpenCASCADE failed measuring distances: ") +
                                            failure.GetMessageString(), path);
+  }
+  return result;
+}
+
+CadConformity measure_against_cad(const std::string& path, const CadOptions& options, const TetMesh& mesh) {
+  const CadModel model = read_cad(path, options);  // the face tolerances and volumes of the model as read_cad sees it
+  CadConformity result;
+  for (double v : model.summary.solid_volumes) result.cad_volume += v;
+  const std::vector<int> labels = face_labels(mesh);
+  std::vector<Point3> points;
+  std::vector<int> faces;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    std::vector<Index> nodes(mesh.faces[f].begin(), mesh.faces[f].end());
+    if (mesh.is_second_order()) nodes.insert(nodes.end(), mesh.face_mid[f].begin(), mesh.face_mid[f].end());
+    for (Index v : nodes) {
+      points.push_back(mesh.points[v]);
+      faces.push_back(labels[f]);
+    }
+  }
+  const std::vector<double> d = distances_to_cad_faces(path, points, faces, options);
+  const auto& tolerances = model.summary.face_tolerances;
+  result.num_nodes = d.size();
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const int f = faces[i];
+    const double tolerance = f >= 1 && std::size_t(f) <= tolerances.size() ? tolerances[f - 1] : 0;
+    result.max_distance = std::max(result.max_distance, d[i]);
+    if (tolerance > 0) result.max_relative_to_tolerance = std::max(result.max_relative_to_tolerance, d[i] / tolerance);
+    if (!(d[i] <= tolerance)) {
+      ++result.num_beyond;
+      if (result.problems.size() < 20) {
+        char line[200];
+        std::snprintf(line, sizeof line, "node at (%.9g, %.9g, %.9g) is %.3g from Face%d (tolerance %.3g)",
+                      points[i][0], points[i][1], points[i][2], d[i], f, tolerance);
+        result.problems.push_back(line);
+      }
+    }
   }
   return result;
 }

@@ -21,8 +21,9 @@ namespace qualmesh::cad_plugin {
 inline constexpr const char* kPluginFileName = "libqualmesh_cad_plugin.so";
 // Name of the entry point (load_cad_fn) in the plugin.
 inline constexpr const char* kLoadCadSymbol = "qualmesh_cad_plugin_load_cad_v1";
-// Name of the second entry point (fit_mesh_fn): fit_mesh_to_cad.
+// Names of the other entry points: fit_mesh_to_cad (FitMeshFn), measure_against_cad (MeasureFn).
 inline constexpr const char* kFitMeshSymbol = "qualmesh_cad_plugin_fit_mesh_v1";
+inline constexpr const char* kMeasureSymbol = "qualmesh_cad_plugin_measure_v1";
 
 enum class LoadStatus : int {
   Ok = 0,             // plc and notes are filled
@@ -56,5 +57,12 @@ struct FitResult {
 // *result only.
 using FitMeshFn = void (*)(const char* path, const CadOptions* options, const CadFitOptions* fit_options,
                            TetMesh* mesh, FitResult* result) noexcept;
+
+struct MeasureResult {
+  LoadResult outcome;
+  CadConformity conformity;  // Ok: measure_against_cad's result
+};
+using MeasureFn = void (*)(const char* path, const CadOptions* options, const TetMesh* mesh,
+                           MeasureResult* result) noexcept;
 
 }  // namespace qualmesh::cad_plugin

@@ -21,6 +21,7 @@ namespace fs = std::filesystem;
 struct PluginHandle {
   cad_plugin::LoadCadFn load_cad = nullptr;  // null when no candidate loaded
   cad_plugin::FitMeshFn fit_mesh = nullptr;
+  cad_plugin::MeasureFn measure = nullptr;
   std::string failure;                       // why, one "path: reason" per candidate tried
 };
 
@@ -54,14 +55,18 @@ PluginHandle open_plugin() {
     }
     void* symbol = dlsym(library, cad_plugin::kLoadCadSymbol);
     void* fit_symbol = dlsym(library, cad_plugin::kFitMeshSymbol);
-    if (!symbol || !fit_symbol) {
-      handle.failure += candidate.string() + ": no " + (symbol ? cad_plugin::kFitMeshSymbol : cad_plugin::kLoadCadSymbol) +
+    void* measure_symbol = dlsym(library, cad_plugin::kMeasureSymbol);
+    if (!symbol || !fit_symbol || !measure_symbol) {
+      handle.failure += candidate.string() + ": no " +
+                        (!symbol ? cad_plugin::kLoadCadSymbol : !fit_symbol ? cad_plugin::kFitMeshSymbol
+                                                                            : cad_plugin::kMeasureSymbol) +
                         " (a plugin built from another version of QualMesh)";
       dlclose(library);
       continue;
     }
     handle.load_cad = reinterpret_cast<cad_plugin::LoadCadFn>(symbol);
     handle.fit_mesh = reinterpret_cast<cad_plugin::FitMeshFn>(fit_symbol);
+    handle.measure = reinterpret_cast<cad_plugin::MeasureFn>(measure_symbol);
     handle.failure.clear();
     return handle;
   }
@@ -112,6 +117,14 @@ CadFitReport fit_mesh_through_plugin(const std::string& path, const CadOptions& 
   plugin.fit_mesh(path.c_str(), &options, &fit_options, &mesh, &result);
   rethrow(result.outcome);
   return result.report;
+}
+
+CadConformity measure_through_plugin(const std::string& path, const CadOptions& options, const TetMesh& mesh) {
+  const PluginHandle& plugin = plugin_or_throw(path);
+  cad_plugin::MeasureResult result;
+  plugin.measure(path.c_str(), &options, &mesh, &result);
+  rethrow(result.outcome);
+  return result.conformity;
 }
 
 }  // namespace qualmesh::cli

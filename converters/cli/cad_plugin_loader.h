@@ -26,4 +26,7 @@ Plc read_cad_through_plugin(const std::string& path, const CadOptions& options, 
 CadFitReport fit_mesh_through_plugin(const std::string& path, const CadOptions& options,
                                      const CadFitOptions& fit_options, TetMesh& mesh);
 
+// measure_against_cad(path, options, mesh) through the plugin.
+CadConformity measure_through_plugin(const std::string& path, const CadOptions& options, const TetMesh& mesh);
+
 }  // namespace qualmesh::cli

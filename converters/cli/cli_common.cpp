@@ -79,4 +79,13 @@ CadFitReport fit_to_cad_input(const std::string& path, const InputOptions& optio
 #endif
 }
 
+CadConformity measure_cad_input(const std::string& path, const InputOptions& options, const TetMesh& mesh) {
+#if QUALMESH_WITH_CAD
+  return measure_through_plugin(path, cad_options_of(options), mesh);
+#else
+  (void)options, (void)mesh;
+  throw InputError(ErrorCode::Unsupported, "this qualmesh was built without the CAD front end (OpenCASCADE)", path);
+#endif
+}
+
 }  // namespace qualmesh::cli

@@ -49,4 +49,7 @@ bool is_cad_input(const std::string& path);
 CadFitReport fit_to_cad_input(const std::string& path, const InputOptions& options, const CadFitOptions& fit_options,
                               TetMesh& mesh);
 
+// measure_against_cad (cad_import.h) for a mesh of the CAD input at `path`, through the plugin.
+CadConformity measure_cad_input(const std::string& path, const InputOptions& options, const TetMesh& mesh);
+
 }  // namespace qualmesh::cli

@@ -1,6 +1,8 @@
 // `qualmesh check MESH [--ref INPUT] [--json] [--require-regular | --no-regularity]`: re-checks a tetrahedral mesh
 // from scratch (ours or a peer's: TetGen, Gmsh, Medit): orientation, face matching, conformity to the input, the
 // (weighted) Delaunay property (counted; a defect only with --require-regular), quality figures. Exit 3 on defects.
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -24,16 +26,61 @@ struct CheckArgs {
   bool no_regularity = false;
 };
 
+// A mesh of a CAD model has its boundary nodes on the CAD faces (fit_mesh_to_cad), not on the chords of the
+// tessellation that the PLC holds: it is judged against the CAD model itself (measure_against_cad), with the
+// checks that need no reference from check_mesh. Adds the findings to `report` and returns the text line.
+std::string judge_against_cad(const CheckArgs& args, const TetMesh& mesh, CheckReport& report, std::string& json) {
+  const CadConformity c = measure_cad_input(args.reference, args.input_options, mesh);
+  const double volume_error =
+      c.cad_volume > 0 ? std::abs(report.mesh_volume - c.cad_volume) / c.cad_volume : std::nan("");
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "cad conformity: %zu boundary nodes measured, max distance %.3g to their CAD face (%.3g of its "
+                "tolerance), %zu beyond; volume %.10g, CAD volume %.10g, relative error %.3g\n",
+                c.num_nodes, c.max_distance, c.max_relative_to_tolerance, c.num_beyond, report.mesh_volume,
+                c.cad_volume, volume_error);
+  char fields[400];
+  std::snprintf(fields, sizeof fields,
+                "\"cad\": {\"num_nodes\": %zu, \"num_beyond_tolerance\": %zu, \"max_distance\": %.17g, "
+                "\"cad_volume\": %.17g, \"volume_relative_error\": %.17g}",
+                c.num_nodes, c.num_beyond, c.max_distance, c.cad_volume, std::isnan(volume_error) ? -1.0 : volume_error);
+  json = fields;
+  for (const std::string& p : c.problems) report.problems.push_back(p);
+  report.num_problems += c.num_beyond;
+  // A CAD model's curved faces are polygons in the mesh: the volume agrees to the chordal error, not exactly.
+  if (!(volume_error <= 1e-2)) {
+    ++report.num_problems;
+    report.problems.push_back("mesh volume differs from the CAD volume by more than 1%");
+  }
+  report.ok = report.num_problems == 0;
+  return line;
+}
+
 int run_check(const CheckArgs& args) {
   const TetMesh mesh = read_tet_mesh(args.mesh);
+  const bool cad_reference = !args.reference.empty() && is_cad_input(args.reference) &&
+                             args.reference.size() > 5 && args.reference.substr(args.reference.size() - 5) != ".scad";
   std::optional<Plc> reference;
-  if (!args.reference.empty()) reference = load_input(args.reference, args.input_options);
+  if (!args.reference.empty() && !cad_reference) reference = load_input(args.reference, args.input_options);
   CheckOptions options;
   options.tolerance = args.tolerance;
   options.regularity = args.no_regularity     ? RegularityCheck::Skip
                        : args.require_regular ? RegularityCheck::Require
                                               : RegularityCheck::Report;
-  const CheckReport report = check_mesh(mesh, reference ? &*reference : nullptr, options);
+  CheckReport report = check_mesh(mesh, reference ? &*reference : nullptr, options);
+  if (cad_reference) {
+    std::string json;
+    const std::string line = judge_against_cad(args, mesh, report, json);
+    if (args.json) {
+      std::string text = to_json(report);
+      const std::size_t end = text.rfind('}');
+      std::cout << text.substr(0, end) << ", " << json << text.substr(end);
+    } else {
+      std::cout << line << to_text(report);
+    }
+    std::cout.flush();
+    return report.ok ? kExitOk : kExitCheckFailed;
+  }
   std::cout << (args.json ? to_json(report) : to_text(report));
   std::cout.flush();
   return report.ok ? kExitOk : kExitCheckFailed;
@@ -45,7 +92,7 @@ void register_check_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<CheckArgs>();
   CLI::App* command = app.add_subcommand(
       "check", "Check a tetrahedral mesh: orientation, face matching, conformity to --ref, quality figures");
-  command->add_option("mesh", args->mesh, "Mesh (.vtu, TetGen .node/.ele, Gmsh .msh, Medit .mesh)")->required();
+  command->add_option("mesh", args->mesh, "Mesh (.vtu, TetGen .node/.ele, Gmsh .msh, Medit .mesh, Abaqus/CalculiX .inp, UNV .unv)")->required();
   command->add_option("--ref", args->reference, "The input model the mesh must conform to");
   add_input_options(*command, args->input_options);
   command->add_flag("--json", args->json, "Print the report as JSON");

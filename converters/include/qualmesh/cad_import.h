@@ -114,4 +114,18 @@ struct CadFitReport {
 CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options, TetMesh& mesh,
                              const CadFitOptions& fit_options = {});
 
+// How well a mesh of a CAD model fits it (what `qualmesh check MESH --ref MODEL.step` reports): every node of every
+// boundary face with label f is measured against CAD face Face<f> by distances_to_cad_faces, and the mesh volume
+// against OpenCASCADE's volume of the solids.
+struct CadConformity {
+  std::size_t num_nodes = 0;         // boundary nodes measured (a node on k faces counts k times)
+  std::size_t num_beyond = 0;        // farther from their face than its tolerance (CadSummary::face_tolerances)
+  double max_distance = 0;           // model units
+  double max_relative_to_tolerance = 0;  // max over nodes of distance / that face's tolerance
+  double cad_volume = 0;             // sum of CadSummary::solid_volumes
+  std::vector<std::string> problems; // the first few nodes beyond their face's tolerance, with coordinates
+};
+// Mutates nothing; reads the model again. Throws InputError as read_cad does (and Unsupported for .scad).
+CadConformity measure_against_cad(const std::string& path, const CadOptions& options, const TetMesh& mesh);
+
 }  // namespace qualmesh
