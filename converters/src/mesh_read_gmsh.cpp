@@ -1,13 +1,16 @@
-// Gmsh .msh reader, ASCII versions 4.1 and 2.2 (gmsh reference manual, "MSH file format"). Tetrahedra (type 4, and
-// type 11 read as its 4 corners) and triangles (types 2 and 9) are kept; points, lines and other cells are
-// skipped. Region of a tetrahedron: the n of a volume physical named "Region<n>", else the physical tag, else
-// (no physical) the elementary entity tag; face markers likewise with "Face<n>" for triangles. Elements are kept
-// in the order of their tags (QualMesh writes tetrahedron t as tag t+1), node order within an element as in the
-// file (Gmsh's own tetrahedra are positively oriented).
+// Gmsh .msh reader, ASCII versions 4.1 and 2.2 (gmsh reference manual, "MSH file format"). Tetrahedra (type 4;
+// type 11 with its mid-nodes when every tetrahedron is type 11, Gmsh's nodes 8 and 9 being edges (2,3) and (1,3)),
+// triangles (types 2 and 9) and lines (types 1 and 8, as edges) are kept; points and other cells are skipped.
+// Region of a tetrahedron: the n of a volume physical named "Solid<n>" (or the older "Region<n>"), else the
+// physical tag, else (no physical) the elementary entity tag; face markers likewise with "Face<n>" for triangles,
+// edge markers with "Edge<n>" for lines. Elements are kept in the order of their tags (QualMesh writes tetrahedron
+// t as tag t+1), node order within an element as in the file (Gmsh's own tetrahedra are positively oriented). A
+// second-order mesh's points are renumbered corners first (TetMesh's rule).
 #include <algorithm>
 #include <map>
 #include <unordered_map>
 
+#include "mesh_groups.h"
 #include "mesh_io_internal.h"
 
 namespace qualmesh::io {
@@ -41,7 +44,8 @@ int nodes_of_type(long long type) {
 
 struct Element {
   long long tag;
-  std::array<Index, 4> nodes;
+  long long type;
+  std::vector<Index> nodes;
   int label;
 };
 
@@ -105,15 +109,17 @@ class GmshReader {
       const long long dim = tokens_.next_integer("a dimension");
       const long long tag = tokens_.next_integer("a physical tag");
       const std::string name(tokens_.next("a physical name"));
-      const char* prefix = dim == 3 ? "Region" : dim == 2 ? "Face" : nullptr;
-      if (!prefix) continue;
-      const std::string p(prefix);
-      if (name.size() > p.size() && name.compare(0, p.size(), p) == 0) {
-        std::string number = name.substr(p.size());
-        if (number[0] == 'M') number = "-" + number.substr(1);
-        char* end = nullptr;
-        const long value = std::strtol(number.c_str(), &end, 10);
-        if (*end == '\0') named_value_[{dim, tag}] = static_cast<int>(value);
+      for (const char* prefix : {dim == 3 ? "Solid" : dim == 2 ? "Face" : dim == 1 ? "Edge" : nullptr,
+                                 dim == 3 ? "Region" : nullptr}) {
+        if (!prefix) continue;
+        const std::string p(prefix);
+        if (name.size() > p.size() && name.compare(0, p.size(), p) == 0) {
+          std::string number = name.substr(p.size());
+          if (number[0] == 'M') number = "-" + number.substr(1);
+          char* end = nullptr;
+          const long value = std::strtol(number.c_str(), &end, 10);
+          if (*end == '\0') named_value_[{dim, tag}] = static_cast<int>(value);
+        }
       }
     }
     expect_end("$EndPhysicalNames");
@@ -201,13 +207,13 @@ class GmshReader {
   }
 
   void add_element(long long type, long long tag, const std::vector<Index>& nodes, int label) {
-    Element e{tag, {0, 0, 0, 0}, label};
+    Element e{tag, type, nodes, label};
     if (type == 4 || type == 11) {
-      std::copy(nodes.begin(), nodes.begin() + 4, e.nodes.begin());
-      tets_.push_back(e);
+      tets_.push_back(std::move(e));
     } else if (type == 2 || type == 9) {
-      std::copy(nodes.begin(), nodes.begin() + 3, e.nodes.begin());
-      faces_.push_back(e);
+      faces_.push_back(std::move(e));
+    } else if (type == 1 || type == 8) {
+      edges_.push_back(std::move(e));
     }
   }
 
@@ -254,7 +260,7 @@ class GmshReader {
       if (num_nodes == 0) tokens_.fail(ErrorCode::Unsupported, "element type " + std::to_string(type));
       nodes.resize(num_nodes);
       for (auto& n : nodes) n = node(tokens_.next_integer("a node tag"));
-      const long long dim = (type == 4 || type == 11) ? 3 : 2;
+      const long long dim = (type == 4 || type == 11) ? 3 : (type == 1 || type == 8) ? 1 : 2;
       // Gmsh 2.2 writes physical tag 0 for an element outside every physical group.
       add_element(type, tag, nodes, label_of(dim, num_tags > 0 && physical != 0, physical, entity));
     }
@@ -265,27 +271,45 @@ class GmshReader {
     const auto by_tag = [](const Element& a, const Element& b) { return a.tag < b.tag; };
     std::stable_sort(tets_.begin(), tets_.end(), by_tag);
     std::stable_sort(faces_.begin(), faces_.end(), by_tag);
+    std::stable_sort(edges_.begin(), edges_.end(), by_tag);
+    bool quadratic = !tets_.empty();
+    for (const Element& e : tets_) quadratic = quadratic && e.type == 11;
     TetMesh mesh;
     mesh.points = std::move(points_);
     for (const Element& e : tets_) {
-      mesh.tets.push_back(e.nodes);
+      const auto& n = e.nodes;
+      mesh.tets.push_back({n[0], n[1], n[2], n[3]});
       mesh.tet_region.push_back(e.label);
+      if (quadratic) mesh.tet_mid.push_back({n[4], n[5], n[6], n[7], n[9], n[8]});  // Gmsh: (2,3) before (1,3)
     }
+    bool faces_quadratic = quadratic, edges_quadratic = quadratic;
     for (const Element& e : faces_) {
-      mesh.faces.push_back({e.nodes[0], e.nodes[1], e.nodes[2]});
+      const auto& n = e.nodes;
+      mesh.faces.push_back({n[0], n[1], n[2]});
       mesh.face_facet.push_back(-1);
       mesh.face_marker.push_back(e.label);
+      faces_quadratic = faces_quadratic && e.type == 9;
+      if (faces_quadratic) mesh.face_mid.push_back({n[3], n[4], n[5]});
     }
+    for (const Element& e : edges_) {
+      mesh.edges.push_back({e.nodes[0], e.nodes[1]});
+      mesh.edge_marker.push_back(e.label);
+      edges_quadratic = edges_quadratic && e.type == 8;
+      if (edges_quadratic) mesh.edge_mid.push_back(e.nodes[2]);
+    }
+    if (!faces_quadratic) mesh.face_mid.clear();
+    if (!edges_quadratic) mesh.edge_mid.clear();
+    if (quadratic) renumber_corners_first(mesh);
     return mesh;
   }
 
   Tokenizer tokens_;
   int version_ = 0;
-  std::map<std::pair<long long, long long>, int> named_value_;           // (dim, physical tag) -> n of "Region<n>"
+  std::map<std::pair<long long, long long>, int> named_value_;           // (dim, physical tag) -> n of "Solid<n>"
   std::map<std::pair<long long, long long>, long long> entity_physical_;  // (dim, entity tag) -> first physical
   std::unordered_map<long long, Index> node_index_;
   std::vector<Point3> points_;
-  std::vector<Element> tets_, faces_;
+  std::vector<Element> tets_, faces_, edges_;
 };
 
 }  // namespace

@@ -12,49 +12,13 @@
 #include "qualmesh/error.h"
 #include "qualmesh/mesh_io.h"
 #include "qualmesh/quality.h"
+#include "sample_meshes.h"
 #include "test_support.h"
 
 namespace qualmesh {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Kuhn's 6-tetrahedron unit cube, scaled by awkward numbers so that exact coordinate round trips are tested; two
-// regions, the 12 hull triangles with the cube face (1..6) as marker and facet index.
-TetMesh sample_mesh() {
-  TetMesh mesh;
-  for (int v = 0; v < 8; ++v) {
-    mesh.points.push_back({0.1 + (v & 1) / 3.0, -7.25 + ((v >> 1) & 1) * 1e-3 * 3.3, 1e10 + ((v >> 2) & 1) * 0.7});
-  }
-  int axes[3] = {0, 1, 2};
-  do {
-    const Index a = 1u << axes[0];
-    const Index b = a | (1u << axes[1]);
-    std::array<Index, 4> t{0, a, b, 7};
-    const auto& p = mesh.points;
-    if (tet_signed_volume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) < 0) std::swap(t[0], t[1]);
-    mesh.tets.push_back(t);
-  } while (std::next_permutation(axes, axes + 3));
-  mesh.tet_region = {1, 1, 1, 7, 7, 7};
-  // Hull triangles: for each tetrahedron face whose vertices share a coordinate bit.
-  for (const auto& t : mesh.tets) {
-    static const int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-    for (const auto& f : kFaces) {
-      const Index a = t[f[0]], b = t[f[1]], c = t[f[2]];
-      for (int bit = 0; bit < 3; ++bit) {
-        for (int value = 0; value < 2; ++value) {
-          const auto has = [&](Index v) { return static_cast<int>((v >> bit) & 1) == value; };
-          if (has(a) && has(b) && has(c)) {
-            mesh.faces.push_back({a, b, c});
-            mesh.face_facet.push_back(2 * bit + value);
-            mesh.face_marker.push_back(2 * bit + value + 1);
-          }
-        }
-      }
-    }
-  }
-  return mesh;
-}
 
 std::string slurp(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -131,7 +95,7 @@ TEST(MeshIo, GmshRoundTrip) {
   expect_same_volume_mesh(mesh, back);
   expect_same_faces(mesh, back);
   const std::string text = slurp(dir / "m.msh");
-  EXPECT_NE(text.find("3 7 \"Region7\""), std::string::npos);
+  EXPECT_NE(text.find("3 7 \"Solid7\""), std::string::npos);
   EXPECT_NE(text.find("2 4 \"Face4\""), std::string::npos);
 }
 
@@ -144,20 +108,15 @@ TEST(MeshIo, MeditRoundTrip) {
   expect_same_faces(mesh, back);
 }
 
-TEST(MeshIo, AbaqusHasSetsAndIsNotRead) {
+TEST(MeshIo, AbaqusHasSets) {
   const auto dir = test::temp_dir("io-abaqus");
   write_tet_mesh(sample_mesh(), (dir / "m.inp").string());
   const std::string text = slurp(dir / "m.inp");
-  EXPECT_NE(text.find("*ELEMENT, TYPE=C3D4, ELSET=Region1"), std::string::npos);
-  EXPECT_NE(text.find("*ELEMENT, TYPE=C3D4, ELSET=Region7"), std::string::npos);
+  EXPECT_NE(text.find("*ELEMENT, TYPE=C3D4, ELSET=Solid1"), std::string::npos);
+  EXPECT_NE(text.find("*ELEMENT, TYPE=C3D4, ELSET=Solid7"), std::string::npos);
   EXPECT_NE(text.find("*SURFACE, NAME=Face6, TYPE=ELEMENT"), std::string::npos);
+  EXPECT_NE(text.find("*NSET, NSET=Face6"), std::string::npos);
   EXPECT_NE(text.find("*NODE, NSET=NALL"), std::string::npos);
-  try {
-    read_tet_mesh((dir / "m.inp").string());
-    FAIL() << "no exception";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.code(), ErrorCode::Unsupported);
-  }
 }
 
 TEST(MeshIo, ReadsGmsh22) {

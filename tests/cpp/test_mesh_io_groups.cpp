@@ -219,6 +219,24 @@ TEST(MeshIoUnv, ReadsFreeCadExport) {
   EXPECT_EQ(mesh.face_marker, std::vector<int>{2});
 }
 
+TEST(MeshIoGmsh, SecondOrderRoundTripWithCurves) {
+  const auto dir = test::temp_dir("io-gmsh-groups");
+  for (const TetMesh& mesh : {sample_mesh_quadratic(false), sample_mesh_quadratic()}) {
+    write_tet_mesh(mesh, (dir / "m.msh").string());
+    const TetMesh back = read_tet_mesh((dir / "m.msh").string());
+    expect_same_points_and_tets(mesh, back);
+    EXPECT_EQ(back.faces, mesh.faces);
+    EXPECT_EQ(back.face_marker, mesh.face_marker);
+    EXPECT_EQ(back.face_mid, mesh.face_mid);
+    EXPECT_EQ(edge_set(back), edge_set(mesh));
+    expect_mid_nodes_at_midpoints(back);
+  }
+  const std::string text = slurp(dir / "m.msh");
+  EXPECT_NE(text.find("1 12 \"Edge12\""), std::string::npos);
+  EXPECT_NE(text.find("3 7 \"Solid7\""), std::string::npos);
+  EXPECT_NE(text.find(" 11 3\n"), std::string::npos);  // a block of three tet10
+}
+
 TEST(MeshIoAbaqus, ErrorsNameFileAndLine) {
   const auto dir = test::temp_dir("io-inp-errors");
   const auto expect_error = [&](const std::string& text, ErrorCode code, long line) {

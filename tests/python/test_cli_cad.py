@@ -53,7 +53,7 @@ def test_mesh_fcstd_writes_calculix_deck_with_one_elset_per_solid(run_qualmesh, 
     proc = run_qualmesh("mesh", beam, "-o", deck)
     assert proc.returncode == 0, proc.stderr
     text = deck.read_text()
-    assert "ELSET=Region1" in text and "ELSET=Region2" in text
+    assert "ELSET=Solid1" in text and "ELSET=Solid2" in text
     mesh = meshio.read(deck, file_format="abaqus")
     tets = sum(len(block.data) for block in mesh.cells if block.type == "tetra")
     m = re.search(r"output:\s+(\d+) vertices \(\d+ Steiner\), (\d+) tetrahedra", proc.stdout)

@@ -138,7 +138,7 @@ def test_meshio_reads_back(meshes, ext, region_key):
     if ext == "inp":
         # One element set per region, holding that region's tetrahedra.
         names = {name for name in mesh.cell_sets}
-        assert {"Region1", "Region2"} <= names, names
+        assert {"Solid1", "Solid2"} <= names, names
     if ext == "vtu":
         assert "min_dihedral_deg" in data and "radius_edge" in data
         assert data["min_dihedral_deg"].min() > 0 and np.isfinite(data["radius_edge"]).all()
@@ -155,7 +155,7 @@ def test_gmsh_api_reads_msh(meshes):
         node_tags, coords, _ = gmsh.model.mesh.getNodes()
         assert len(node_tags) == len(meshes["points"])
         names = {gmsh.model.getPhysicalName(dim, tag) for dim, tag in gmsh.model.getPhysicalGroups(3)}
-        assert names == {"Region1", "Region2"}
+        assert names == {"Solid1", "Solid2"}
         face_names = {gmsh.model.getPhysicalName(dim, tag) for dim, tag in gmsh.model.getPhysicalGroups(2)}
         assert {"Face1", "Face4", "Face7"} <= face_names, face_names
         # Volume of each physical region from gmsh's own element volumes... via its node coordinates.
