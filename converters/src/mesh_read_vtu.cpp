@@ -1,12 +1,14 @@
 // VTU reader for the files QualMesh writes: VTK XML UnstructuredGrid, one Piece, ASCII DataArrays ("binary" and
 // "appended" data are not read). Keeps tetrahedra (VTK_TETRA = 10, node order as in the file) and the "region" cell
 // array (0 when absent) and the "weight" point array (TetMesh::weights; empty when absent); triangles (VTK_TRIANGLE =
-// 5) become faces with marker 0; quadratic tetrahedra and triangles (24, 22) are read as their corners; vertex and line
-// cells are skipped; other cells are refused. Not a general XML parser: it finds the <Points>, <Cells> and <CellData>
+// 5) become faces with the "face_id" cell array as marker (0 when absent); quadratic tetrahedra and triangles (24,
+// 22) give tet_mid / face_mid (VTK's mid-node order is TetMesh's) when every tetrahedron is quadratic, else their
+// corners only; vertex and line cells are skipped; other cells are refused. Not a general XML parser: it finds the <Points>, <Cells> and <CellData>
 // blocks and their DataArrays.
 #include <algorithm>
 #include <cstdlib>
 
+#include "mesh_groups.h"
 #include "mesh_io_internal.h"
 
 namespace qualmesh::io {
@@ -42,6 +44,7 @@ class VtuReader {
     const DataArray* offsets = find(arrays, "Cells", "offsets");
     const DataArray* types = find(arrays, "Cells", "types");
     const DataArray* region = find(arrays, "CellData", "region");
+    const DataArray* face_id = find(arrays, "CellData", "face_id");
     const DataArray* weight = find(arrays, "PointData", "weight");
     if (!points || !connectivity || !offsets || !types) fail(ErrorCode::Parse, "missing Points or Cells arrays", line_at(piece));
     if (points->values.size() != 3 * num_points) fail(ErrorCode::Parse, "wrong number of coordinates", points->line);
@@ -49,6 +52,7 @@ class VtuReader {
       fail(ErrorCode::Parse, "offsets/types do not match NumberOfCells", offsets->line);
     }
     if (region && region->values.size() != num_cells) fail(ErrorCode::Parse, "wrong size of 'region'", region->line);
+    if (face_id && face_id->values.size() != num_cells) fail(ErrorCode::Parse, "wrong size of 'face_id'", face_id->line);
     if (weight && weight->values.size() != num_points) fail(ErrorCode::Parse, "wrong size of 'weight'", weight->line);
 
     TetMesh mesh;
@@ -58,6 +62,7 @@ class VtuReader {
     }
     if (weight) mesh.weights = weight->values;
     std::size_t begin = 0;
+    bool quadratic = true, faces_quadratic = true;
     for (std::size_t cell = 0; cell < num_cells; ++cell) {
       const std::size_t end = static_cast<std::size_t>(offsets->values[cell]);
       if (end < begin || end > connectivity->values.size()) fail(ErrorCode::Parse, "bad offsets", offsets->line);
@@ -75,16 +80,32 @@ class VtuReader {
       if ((type == 10 && nodes.size() == 4) || (type == 24 && nodes.size() == 10)) {
         mesh.tets.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
         mesh.tet_region.push_back(region ? static_cast<int>(region->values[cell]) : 0);
+        quadratic = quadratic && type == 24;
+        if (quadratic) mesh.tet_mid.push_back({nodes[4], nodes[5], nodes[6], nodes[7], nodes[8], nodes[9]});
       } else if ((type == 5 && nodes.size() == 3) || (type == 22 && nodes.size() == 6)) {
         mesh.faces.push_back({nodes[0], nodes[1], nodes[2]});
         mesh.face_facet.push_back(-1);
-        mesh.face_marker.push_back(0);
+        mesh.face_marker.push_back(face_id ? static_cast<int>(face_id->values[cell]) : 0);
+        faces_quadratic = faces_quadratic && type == 22;
+        if (faces_quadratic) mesh.face_mid.push_back({nodes[3], nodes[4], nodes[5]});
       } else if (type == 1 || type == 2 || type == 3 || type == 4 || type == 21) {
         // Vertices, poly-vertices, lines, poly-lines, quadratic edges: not part of a tetrahedral mesh; skipped.
       } else {
         fail(ErrorCode::Unsupported, "cell " + std::to_string(cell) + " of VTK type " + std::to_string(type) +
                                          " (only tetrahedra, triangles, vertices and lines are read)", types->line);
       }
+    }
+    if (!quadratic || mesh.tets.empty()) mesh.tet_mid.clear();
+    if (mesh.tet_mid.empty() || !faces_quadratic) mesh.face_mid.clear();
+    if (!mesh.tet_mid.empty()) {
+      renumber_corners_first(mesh);
+      // Weights belong to corner nodes only (tet_mesh.h); the writer pads mid-nodes with 0.
+      std::vector<char> corner(mesh.points.size(), 0);
+      for (const auto& t : mesh.tets) for (Index v : t) corner[v] = 1;
+      for (const auto& f : mesh.faces) for (Index v : f) corner[v] = 1;
+      std::size_t num_corners = 0;
+      while (num_corners < corner.size() && corner[num_corners]) ++num_corners;
+      if (mesh.weights.size() > num_corners) mesh.weights.resize(num_corners);
     }
     return mesh;
   }

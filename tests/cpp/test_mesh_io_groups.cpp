@@ -237,6 +237,26 @@ TEST(MeshIoGmsh, SecondOrderRoundTripWithCurves) {
   EXPECT_NE(text.find(" 11 3\n"), std::string::npos);  // a block of three tet10
 }
 
+TEST(MeshIoVtu, FaceCellsWithFaceIdsRoundTrip) {
+  const auto dir = test::temp_dir("io-vtu-groups");
+  for (TetMesh mesh : {sample_mesh(), sample_mesh_quadratic()}) {
+    mesh.weights.assign(8, 0.25);  // corner weights; mid-nodes get none
+    write_tet_mesh(mesh, (dir / "m.vtu").string());
+    const TetMesh back = read_tet_mesh((dir / "m.vtu").string());
+    expect_same_points_and_tets(mesh, back);
+    EXPECT_EQ(back.tet_region, mesh.tet_region);
+    EXPECT_EQ(back.faces, mesh.faces);
+    EXPECT_EQ(back.face_marker, mesh.face_marker);
+    EXPECT_EQ(back.face_mid, mesh.face_mid);
+    EXPECT_EQ(back.weights, mesh.weights);
+  }
+  const std::string text = slurp(dir / "m.vtu");
+  EXPECT_NE(text.find("NumberOfCells=\"18\""), std::string::npos);
+  EXPECT_NE(text.find("Name=\"face_id\""), std::string::npos);
+  EXPECT_NE(text.find("          24\n"), std::string::npos);
+  EXPECT_NE(text.find("          22\n"), std::string::npos);
+}
+
 TEST(MeshIoAbaqus, ErrorsNameFileAndLine) {
   const auto dir = test::temp_dir("io-inp-errors");
   const auto expect_error = [&](const std::string& text, ErrorCode code, long line) {
