@@ -141,6 +141,7 @@ void write_gmsh41(const TetMesh& mesh, const std::string& path);
 void write_medit(const TetMesh& mesh, const std::string& path);
 void write_abaqus(const TetMesh& mesh, const std::string& path);
 void write_unv(const TetMesh& mesh, const std::string& path);
+void write_elmer(const TetMesh& mesh, const std::string& path);
 TetMesh read_tetgen(const std::string& base);
 TetMesh read_gmsh(const std::string& path);
 TetMesh read_medit(const std::string& path);

@@ -18,6 +18,8 @@ TetMesh read_tet_mesh(const std::string& path) {
     case MeshFormat::Vtu: mesh = io::read_vtu(path); break;
     case MeshFormat::Abaqus: mesh = io::read_abaqus(path); break;
     case MeshFormat::Unv: mesh = io::read_unv(path); break;
+    case MeshFormat::Elmer:
+      throw InputError(ErrorCode::Unsupported, "reading Elmer mesh directories is not supported", path);
   }
   io::check_mesh_indices(mesh, path);
   return mesh;

@@ -9,7 +9,8 @@
 namespace qualmesh {
 namespace {
 
-std::string lower_extension(const std::string& path) {
+std::string lower_extension(std::string path) {
+  while (path.size() > 1 && path.back() == '/') path.pop_back();  // "beam.elmer/"
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
@@ -22,6 +23,7 @@ bool format_of_extension(const std::string& ext, MeshFormat& format) {
   else if (ext == ".mesh") format = MeshFormat::Medit;
   else if (ext == ".inp") format = MeshFormat::Abaqus;
   else if (ext == ".unv") format = MeshFormat::Unv;
+  else if (ext == ".elmer") format = MeshFormat::Elmer;
   else return false;
   return true;
 }
@@ -32,7 +34,7 @@ MeshFormat mesh_format_from_path(const std::string& path) {
   MeshFormat format{};
   if (!format_of_extension(lower_extension(path), format)) {
     throw InputError(ErrorCode::Unsupported,
-                     "unknown mesh format (expected .vtu, .node, .ele, .msh, .mesh, .inp or .unv)", path);
+                     "unknown mesh format (expected .vtu, .node, .ele, .msh, .mesh, .inp, .unv or .elmer)", path);
   }
   return format;
 }
@@ -58,6 +60,7 @@ void write_tet_mesh(const TetMesh& mesh, const std::string& path, MeshFormat for
     case MeshFormat::Medit: io::write_medit(mesh, path); return;
     case MeshFormat::Abaqus: io::write_abaqus(mesh, path); return;
     case MeshFormat::Unv: io::write_unv(mesh, path); return;
+    case MeshFormat::Elmer: io::write_elmer(mesh, path); return;
   }
 }
 

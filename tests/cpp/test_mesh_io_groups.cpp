@@ -257,6 +257,71 @@ TEST(MeshIoVtu, FaceCellsWithFaceIdsRoundTrip) {
   EXPECT_NE(text.find("          22\n"), std::string::npos);
 }
 
+// Lines of a file split into integers / tokens.
+std::vector<std::vector<std::string>> token_lines(const fs::path& path) {
+  std::vector<std::vector<std::string>> lines;
+  std::istringstream in(slurp(path));
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::vector<std::string> tokens;
+    for (std::string w; words >> w;) tokens.push_back(w);
+    if (!tokens.empty()) lines.push_back(tokens);
+  }
+  return lines;
+}
+
+TEST(MeshIoElmer, DirectoryFollowsTheFormat) {
+  const auto dir = test::temp_dir("io-elmer");
+  const TetMesh mesh = sample_mesh_quadratic();
+  EXPECT_EQ(mesh_format_from_path("a/beam.elmer/"), MeshFormat::Elmer);
+  fs::create_directories(dir / "beam.elmer" / "stale");  // an older mesh of that name is replaced
+  write_tet_mesh(mesh, (dir / "beam.elmer").string());
+  EXPECT_FALSE(fs::exists(dir / "beam.elmer" / "stale"));
+  const auto header = token_lines(dir / "beam.elmer" / "mesh.header");
+  ASSERT_EQ(header.size(), 4u);
+  EXPECT_EQ(header[0], (std::vector<std::string>{std::to_string(mesh.points.size()), "6", "12"}));
+  EXPECT_EQ(header[1], std::vector<std::string>{"2"});
+  EXPECT_EQ(header[2], (std::vector<std::string>{"510", "6"}));
+  EXPECT_EQ(header[3], (std::vector<std::string>{"306", "12"}));
+  const auto nodes = token_lines(dir / "beam.elmer" / "mesh.nodes");
+  ASSERT_EQ(nodes.size(), mesh.points.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    ASSERT_EQ(nodes[i].size(), 5u);
+    EXPECT_EQ(nodes[i][0], std::to_string(i + 1));
+    EXPECT_EQ(nodes[i][1], "-1");
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(std::strtod(nodes[i][2 + c].c_str(), nullptr), mesh.points[i][c]);
+  }
+  const auto elements = token_lines(dir / "beam.elmer" / "mesh.elements");
+  ASSERT_EQ(elements.size(), 6u);
+  for (std::size_t t = 0; t < 6; ++t) {
+    ASSERT_EQ(elements[t].size(), 13u);
+    EXPECT_EQ(elements[t][1], std::to_string(mesh.tet_region[t]));
+    EXPECT_EQ(elements[t][2], "510");
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(elements[t][3 + k], std::to_string(mesh.tets[t][k] + 1));
+    for (int k = 0; k < 6; ++k) EXPECT_EQ(elements[t][7 + k], std::to_string(mesh.tet_mid[t][k] + 1));
+  }
+  const auto boundary = token_lines(dir / "beam.elmer" / "mesh.boundary");
+  ASSERT_EQ(boundary.size(), 12u);
+  for (std::size_t f = 0; f < 12; ++f) {
+    ASSERT_EQ(boundary[f].size(), 11u);
+    EXPECT_EQ(boundary[f][1], std::to_string(mesh.face_marker[f]));
+    const long parent = std::stol(boundary[f][2]);
+    ASSERT_GE(parent, 1);
+    EXPECT_EQ(boundary[f][3], "0");  // hull faces have one parent
+    std::set<Index> corners(mesh.tets[parent - 1].begin(), mesh.tets[parent - 1].end());
+    for (Index v : mesh.faces[f]) EXPECT_TRUE(corners.count(v));
+    EXPECT_EQ(boundary[f][4], "306");
+  }
+  const std::string names = slurp(dir / "beam.elmer" / "mesh.names");
+  EXPECT_NE(names.find("! ----- names for bodies -----\n$ Solid1 = 1\n$ Solid7 = 7\n"), std::string::npos);
+  EXPECT_NE(names.find("! ----- names for boundaries -----\n$ Face1 = 1\n"), std::string::npos);
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+    EXPECT_EQ(entry.path().filename().string().find(".old-"), std::string::npos) << entry.path();
+  }
+}
+
 TEST(MeshIoAbaqus, ErrorsNameFileAndLine) {
   const auto dir = test::temp_dir("io-inp-errors");
   const auto expect_error = [&](const std::string& text, ErrorCode code, long line) {

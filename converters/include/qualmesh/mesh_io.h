@@ -1,5 +1,7 @@
 // Writers and readers of tetrahedral meshes: QualMesh's output formats (VTU, TetGen, Gmsh 4.1, Medit, Abaqus /
-// CalculiX) and the readers the checker uses to judge foreign meshes (TetGen, Gmsh 4.1 and 2.2, Medit, VTU).
+// CalculiX, UNV, Elmer) and the readers the checker uses to judge foreign meshes (TetGen, Gmsh 4.1 and 2.2, Medit,
+// VTU, Abaqus / CalculiX, UNV). Every writer carries the groups Solid<r>, Face<m> and Edge<e> (tet_mesh.h) where the
+// format can, and writes second-order meshes (TetMesh::tet_mid) in the format's own node order.
 //
 // Orientation: QualMesh writes tetrahedra positively oriented, (p1-p0) x (p2-p0) . (p3-p0) > 0, which is what
 // VTK, Gmsh, Medit and CalculiX C3D4 expect (C3D4's node order is SMESH's [1,0,2,3], SMESH's being negative).
@@ -25,9 +27,11 @@ enum class MeshFormat {
   Medit,   // Medit .mesh; region = tetrahedron reference, face marker = triangle reference
   Abaqus,  // Abaqus / CalculiX .inp; C3D4 / C3D10, ELSET Solid<r>, NSET + element *SURFACE Face<m>, NSET Edge<e>
   Unv,     // I-DEAS universal .unv (FreeCAD's native import); 2411 / 2412 / 2467 groups Solid<r>, Face<m>, Edge<e>
+  Elmer,   // Elmer mesh directory NAME.elmer/ (mesh.header, .nodes, .elements, .boundary, .names); write only
 };
 
-// The format of a mesh file by its extension: .vtu, .node / .ele (TetGen), .msh, .mesh, .inp.
+// The format of a mesh file by its extension: .vtu, .node / .ele (TetGen), .msh, .mesh, .inp, .unv, .elmer (a
+// directory; a trailing '/' is allowed).
 // Throws InputError(ErrorCode::Unsupported) for any other extension.
 MeshFormat mesh_format_from_path(const std::string& path);
 
@@ -35,7 +39,7 @@ MeshFormat mesh_format_from_path(const std::string& path);
 bool is_mesh_path(const std::string& path);
 
 // Writes `mesh` to `path` in the format given by its extension. For TetGen, `path` may end in .node or .ele and
-// BASE.node, BASE.ele and BASE.face are written. The mesh is not modified. Throws InputError(Io) on failure.
+// BASE.node, BASE.ele and BASE.face are written; for Elmer, `path` is the directory to create (or replace). The mesh is not modified. Throws InputError(Io) on failure.
 void write_tet_mesh(const TetMesh& mesh, const std::string& path);
 void write_tet_mesh(const TetMesh& mesh, const std::string& path, MeshFormat format);
 
