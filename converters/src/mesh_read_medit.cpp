@@ -1,11 +1,14 @@
 // Medit .mesh reader (ASCII; INRIA's format as written by Medit, MMG, CGAL, Gmsh and QualMesh). Keeps Vertices,
-// Triangles (reference = face marker) and Tetrahedra (reference = region); skips the other known sections (Edges,
-// Corners, Ridges, Required*, Normals, Tangents, other cells). Keywords are case-insensitive; '#' starts a
-// comment. Indices are 1-based in the file. Node order is kept (MMG's tetrahedra are positively oriented).
+// Triangles / TrianglesP2 (reference = face marker), Tetrahedra / TetrahedraP2 (reference = region) and Edges /
+// EdgesP2 (reference = edge marker); P2 mid-nodes in the order mesh_write_medit.cpp describes (TetMesh's). Skips the
+// other known sections (Corners, Ridges, Required*, Normals, Tangents, other cells). Keywords are case-insensitive;
+// '#' starts a comment. Indices are 1-based in the file. Node order is kept (MMG's tetrahedra are positively
+// oriented). A second-order mesh's points are renumbered corners first.
 #include <algorithm>
 #include <cctype>
 #include <map>
 
+#include "mesh_groups.h"
 #include "mesh_io_internal.h"
 
 namespace qualmesh::io {
@@ -20,7 +23,7 @@ std::string lower(std::string_view text) {
 // Numbers per entry of the sections that are skipped.
 const std::map<std::string, int>& skipped_sections() {
   static const std::map<std::string, int> sections = {
-      {"edges", 3},           {"quadrilaterals", 5},     {"hexahedra", 9},          {"prisms", 7},
+      {"quadrilaterals", 5},     {"hexahedra", 9},          {"prisms", 7},
       {"pyramids", 6},        {"corners", 1},            {"ridges", 1},             {"requiredvertices", 1},
       {"requirededges", 1},   {"requiredtriangles", 1},  {"requiredquadrilaterals", 1}, {"requiredtetrahedra", 1},
       {"normals", 3},         {"normalatvertices", 2},   {"tangents", 3},           {"tangentatvertices", 2},
@@ -34,7 +37,7 @@ const std::map<std::string, int>& skipped_sections() {
 TetMesh read_medit(const std::string& path) {
   Tokenizer tokens(read_whole_file(path), path, '#');
   TetMesh mesh;
-  bool have_vertices = false, have_end = false;
+  bool have_vertices = false, have_end = false, any_tet4 = false;
   const auto vertex = [&](const char* what) -> Index {
     const long long raw = tokens.next_integer(what);
     if (raw < 1 || static_cast<std::size_t>(raw) > mesh.points.size()) {
@@ -58,24 +61,32 @@ TetMesh read_medit(const std::string& path) {
         for (double& c : p) c = tokens.next_double("a coordinate");
         tokens.next_integer("a vertex reference");
       }
-    } else if (keyword == "triangles") {
-      if (!have_vertices) tokens.fail(ErrorCode::Parse, "Triangles before Vertices");
-      const std::size_t count = tokens.next_count("the number of triangles");
+    } else if (keyword == "triangles" || keyword == "trianglesp2" || keyword == "tetrahedra" ||
+               keyword == "tetrahedrap2" || keyword == "edges" || keyword == "edgesp2") {
+      if (!have_vertices) tokens.fail(ErrorCode::Parse, keyword + " before Vertices");
+      const bool p2 = keyword.size() > 2 && keyword.compare(keyword.size() - 2, 2, "p2") == 0;
+      const int corners = keyword[0] == 't' && keyword[1] == 'e' ? 4 : keyword[0] == 't' ? 3 : 2;
+      const int extra = p2 ? (corners == 4 ? 6 : corners == 3 ? 3 : 1) : 0;
+      const std::size_t count = tokens.next_count("the number of elements");
+      std::vector<Index> v(corners + extra);
       for (std::size_t i = 0; i < count; ++i) {
-        std::array<Index, 3> f;
-        for (Index& v : f) v = vertex("a vertex index");
-        mesh.faces.push_back(f);
-        mesh.face_facet.push_back(-1);
-        mesh.face_marker.push_back(static_cast<int>(tokens.next_integer("a triangle reference")));
-      }
-    } else if (keyword == "tetrahedra") {
-      if (!have_vertices) tokens.fail(ErrorCode::Parse, "Tetrahedra before Vertices");
-      const std::size_t count = tokens.next_count("the number of tetrahedra");
-      for (std::size_t i = 0; i < count; ++i) {
-        std::array<Index, 4> t;
-        for (Index& v : t) v = vertex("a vertex index");
-        mesh.tets.push_back(t);
-        mesh.tet_region.push_back(static_cast<int>(tokens.next_integer("a tetrahedron reference")));
+        for (Index& n : v) n = vertex("a vertex index");
+        const int ref = static_cast<int>(tokens.next_integer("a reference"));
+        if (corners == 4) {
+          mesh.tets.push_back({v[0], v[1], v[2], v[3]});
+          mesh.tet_region.push_back(ref);
+          if (p2) mesh.tet_mid.push_back({v[4], v[5], v[6], v[7], v[8], v[9]});
+          any_tet4 = any_tet4 || !p2;
+        } else if (corners == 3) {
+          mesh.faces.push_back({v[0], v[1], v[2]});
+          mesh.face_facet.push_back(-1);
+          mesh.face_marker.push_back(ref);
+          if (p2) mesh.face_mid.push_back({v[3], v[4], v[5]});
+        } else {
+          mesh.edges.push_back({v[0], v[1]});
+          mesh.edge_marker.push_back(ref);
+          if (p2) mesh.edge_mid.push_back(v[2]);
+        }
       }
     } else if (keyword == "end") {
       have_end = true;
@@ -91,6 +102,10 @@ TetMesh read_medit(const std::string& path) {
     }
   }
   if (!have_vertices) tokens.fail(ErrorCode::Parse, "no Vertices section");
+  if (any_tet4) mesh.tet_mid.clear();  // mixed linear and quadratic: corners only
+  if (mesh.tet_mid.empty() || mesh.face_mid.size() != mesh.faces.size()) mesh.face_mid.clear();
+  if (mesh.tet_mid.empty() || mesh.edge_mid.size() != mesh.edges.size()) mesh.edge_mid.clear();
+  if (!mesh.tet_mid.empty()) renumber_corners_first(mesh);
   return mesh;
 }
 

@@ -322,6 +322,24 @@ TEST(MeshIoElmer, DirectoryFollowsTheFormat) {
   }
 }
 
+TEST(MeshIoMedit, P2RoundTripWithEdges) {
+  const auto dir = test::temp_dir("io-medit-groups");
+  for (const TetMesh& mesh : {sample_mesh_quadratic(), sample_mesh_quadratic(false)}) {
+    write_tet_mesh(mesh, (dir / "m.mesh").string());
+    const TetMesh back = read_tet_mesh((dir / "m.mesh").string());
+    expect_same_points_and_tets(mesh, back);
+    EXPECT_EQ(back.faces, mesh.faces);
+    EXPECT_EQ(back.face_marker, mesh.face_marker);
+    EXPECT_EQ(back.face_mid, mesh.face_mid);
+    EXPECT_EQ(back.edges, mesh.edges);
+    EXPECT_EQ(back.edge_marker, mesh.edge_marker);
+    EXPECT_EQ(back.edge_mid, mesh.edge_mid);
+  }
+  const std::string text = slurp(dir / "m.mesh");
+  EXPECT_NE(text.find("\nTetrahedraP2\n6\n"), std::string::npos);
+  EXPECT_NE(text.find("\nTrianglesP2\n12\n"), std::string::npos);
+}
+
 TEST(MeshIoAbaqus, ErrorsNameFileAndLine) {
   const auto dir = test::temp_dir("io-inp-errors");
   const auto expect_error = [&](const std::string& text, ErrorCode code, long line) {
