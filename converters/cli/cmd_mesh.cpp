@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cli_common.h"
+#include "mesh_checks.h"
 #include "qualmesh/error.h"
 #include "qualmesh/mesh_io.h"
 #include "qualmesh/mesher.h"
@@ -35,6 +36,7 @@ int run_mesh(MeshArgs& args) {
   if (args.no_pump) args.options.pump = false;
   if (args.no_sliver_insertion) args.options.sliver_insertion = false;
   const Plc plc = load_input(args.input, args.input_options);
+  if (!check_mesh_input(plc, args.input, args.options, args.verbose)) return kExitBadInput;  // as `info` validates
   const bool tty = isatty(fileno(stderr)) != 0;
   ProgressCallback progress;
   if (tty) {
@@ -51,6 +53,7 @@ int run_mesh(MeshArgs& args) {
   if (args.verbose) log = [](const std::string& line) { std::cerr << "qualmesh: " << line << "\n"; };
   const MeshResult result = mesh_plc(plc, args.options, progress, log);
   if (tty) std::fprintf(stderr, "\r%70s\r", "");
+  if (!check_mesh_result(plc, args.input, args.options, result)) return kExitBadInput;  // no tetrahedron
   write_tet_mesh(result.mesh, args.output);
   const MeshStats& st = result.stats;
   std::printf("input:       %zu vertices, %zu facets\n", plc.vertices.size(), plc.facets.size());
@@ -127,6 +130,7 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
   command->add_flag("--no-sliver-insertion", args->no_sliver_insertion,
                     "Pumping alone: no points inserted at the slivers it leaves");
   command->add_flag("-v,--verbose", args->verbose, "Log the stages on stderr");
+  add_mesh_option_checks(*command);  // ranges and the output format, at parse time (mesh_checks.h)
   command->callback([args, &exit_code] { exit_code = run_mesh(*args); });
 }
 
