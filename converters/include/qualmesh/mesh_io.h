@@ -23,7 +23,7 @@ namespace qualmesh {
 enum class MeshFormat {
   Vtu,     // VTK XML unstructured grid, ASCII; cell data "region", "min_dihedral_deg", "radius_edge"
   TetGen,  // BASE.node, BASE.ele (region as the tetrahedron attribute), BASE.face (facet marker)
-  Gmsh41,  // Gmsh .msh 4.1 ASCII; one volume physical "Region<attr>" per region, one surface physical "Face<m>"
+  Gmsh41,  // Gmsh .msh 4.1 ASCII; physical groups Solid<r> (volumes), Face<m> (surfaces), Edge<e> (curves)
   Medit,   // Medit .mesh; region = tetrahedron reference, face marker = triangle reference
   Abaqus,  // Abaqus / CalculiX .inp; C3D4 / C3D10, ELSET Solid<r>, NSET + element *SURFACE Face<m>, NSET Edge<e>
   Unv,     // I-DEAS universal .unv (FreeCAD's native import); 2411 / 2412 / 2467 groups Solid<r>, Face<m>, Edge<e>
@@ -39,17 +39,20 @@ MeshFormat mesh_format_from_path(const std::string& path);
 bool is_mesh_path(const std::string& path);
 
 // Writes `mesh` to `path` in the format given by its extension. For TetGen, `path` may end in .node or .ele and
-// BASE.node, BASE.ele and BASE.face are written; for Elmer, `path` is the directory to create (or replace). The mesh is not modified. Throws InputError(Io) on failure.
+// BASE.node, BASE.ele and BASE.face are written; for Elmer, `path` is the directory to create (or replace). The
+// mesh is not modified. Throws InputError(Io) on failure.
 void write_tet_mesh(const TetMesh& mesh, const std::string& path);
 void write_tet_mesh(const TetMesh& mesh, const std::string& path, MeshFormat format);
 
 // Reads a tetrahedral mesh: TetGen (.ele or .node path: reads BASE.node + BASE.ele, and BASE.face when present),
-// Gmsh .msh 4.1 and 2.2 ASCII, Medit .mesh (Vertices + Tetrahedra + Triangles), .vtu as QualMesh writes it
-// (ASCII). Second-order elements are read as their four (three) corner nodes. Regions: TetGen's first tetrahedron
-// attribute, Gmsh's volume physical tag (or the n of a physical named "Region<n>"; else the entity tag), Medit's
-// reference, VTU's "region" array. Face markers likewise (TetGen boundary marker, Gmsh surface physical or
-// "Face<n>", Medit reference). face_facet is -1 for every face read. Abaqus .inp: C3D4 / C3D10 (ELSET Solid<n> or
-// Region<n> -> region), element *SURFACE Face<n> -> faces (mesh_read_abaqus.cpp).
+// Gmsh .msh 4.1 and 2.2 ASCII, Medit .mesh, .vtu as QualMesh writes it (ASCII), Abaqus / CalculiX .inp (C3D4 /
+// C3D10, *SURFACE element sides as faces; mesh_read_abaqus.cpp), UNV (111 / 118 tets, 2467 groups). Regions:
+// TetGen's first tetrahedron attribute, the n of a group named Solid<n> (or the older Region<n>) in Gmsh, .inp and
+// UNV (else Gmsh's physical or entity tag, the order of the .inp ELSETs or UNV volume groups), Medit's reference,
+// VTU's "region" array. Face markers likewise (TetGen boundary marker, Face<n>, Medit reference, VTU "face_id"),
+// edge markers from Edge<n> line elements (Gmsh, UNV, .inp) and Medit Edges. face_facet is -1 for every face read.
+// Second-order meshes (Gmsh, VTU, Medit P2, .inp, .unv) fill tet_mid / face_mid / edge_mid, their points renumbered
+// corners first; TetGen gives corners. Elmer directories are not read (Unsupported).
 // Throws InputError (Io, Parse, Unsupported, IndexOutOfRange, NonFinite) with the file and line.
 TetMesh read_tet_mesh(const std::string& path);
 
