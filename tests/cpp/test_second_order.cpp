@@ -188,6 +188,45 @@ void expect_fitted_onto_cad(const std::string& file, bool second_order) {
   }
 }
 
+// The mesh's edges are the subsegments of the CAD edges: on the beam (a box), markers 1..12, every node of Edge<e>
+// on the box edge it names, and together they cover each edge's length exactly.
+TEST(CadEdges, TheBeamsTwelveCadEdgesAreChainsOfMeshEdges) {
+  const std::string path = test::source_path("examples/cantilever/beam.step");
+  QM_REQUIRE_FILE(path);
+  const CadModel model = read_cad(path);
+  MeshOptions options;
+  options.max_edge_length = 8;
+  const MeshResult result = mesh_plc(model.plc, options);
+  const TetMesh& mesh = result.mesh;
+  ASSERT_EQ(mesh.edges.size(), mesh.edge_marker.size());
+  std::map<int, double> length;
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e) {
+    const Point3& a = mesh.points[mesh.edges[e][0]];
+    const Point3& b = mesh.points[mesh.edges[e][1]];
+    length[mesh.edge_marker[e]] += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                             (a[2] - b[2]) * (a[2] - b[2]));
+    int varying = 0;
+    for (int c = 0; c < 3; ++c) varying += a[c] != b[c];
+    EXPECT_EQ(varying, 1) << "edge " << e << " is not along a box edge";
+  }
+  ASSERT_EQ(length.size(), 12u);
+  EXPECT_EQ(length.begin()->first, 1);
+  EXPECT_EQ(length.rbegin()->first, 12);
+  int long_edges = 0;
+  for (const auto& [marker, total] : length) {
+    const bool is_long = std::fabs(total - 100) < 1e-9;
+    long_edges += is_long;
+    EXPECT_TRUE(is_long || std::fabs(total - 10) < 1e-12) << "Edge" << marker << " length " << total;
+  }
+  EXPECT_EQ(long_edges, 4);
+  // Refined: no mesh edge longer than the size asked for.
+  for (const auto& edge : mesh.edges) {
+    const Point3& a = mesh.points[edge[0]];
+    const Point3& b = mesh.points[edge[1]];
+    EXPECT_LE(std::fabs(a[0] - b[0]) + std::fabs(a[1] - b[1]) + std::fabs(a[2] - b[2]), 8 + 1e-9);
+  }
+}
+
 TEST(CadFit, PartStepLinear) { expect_fitted_onto_cad("part.step", false); }
 TEST(CadFit, PartStepSecondOrder) { expect_fitted_onto_cad("part.step", true); }
 
