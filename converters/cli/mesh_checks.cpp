@@ -29,6 +29,9 @@ struct Range {
   double hi;
   bool hi_open;
   const char* why;  // appended to the message when a value is out of range (may be empty)
+  // Lengths and volumes: smaller positive values are refused too, as too small to compute with (a length's square
+  // would underflow to 0 and read as "no limit"); 0 = no such floor.
+  double floor = 0;
 
   bool contains(double x) const {
     if (!std::isfinite(x)) return false;
@@ -51,13 +54,15 @@ std::string describe(const Range& r) {
          (r.hi_open ? ")" : "]");
 }
 
-std::string shown(const std::string& text) {
-  // Keep the message one printable line whatever the user typed.
+// `text` quoted, kept one printable line whatever the user typed (and short for option values).
+std::string shown(const std::string& text, std::size_t max_size = 40) {
   std::string out = "'";
-  for (const char c : text.substr(0, 40)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
-  if (text.size() > 40) out += "...";
+  for (const char c : text.substr(0, max_size)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
+  if (text.size() > max_size) out += "...";
   return out + "'";
 }
+
+std::string shown_path(const std::string& path) { return shown(path, 400); }
 
 // A CLI11 check of a floating-point option: the text must be a number (strtod syntax), finite, in `r`.
 // CLI11's own Range lets NaN through (every comparison with NaN is false); this one does not.
@@ -78,6 +83,8 @@ CLI::Validator real_in(const Range& r) {
           if (r.why[0] != '\0') message += std::string(" (") + r.why + ")";
           return message;
         }
+        if (x < r.floor)
+          return shown(text) + " is too small to compute with: expected a finite number >= " + format_number(r.floor);
         return {};
       },
       range_text);
@@ -103,13 +110,15 @@ CLI::Validator count_at_least_one() {
 
 const Range kRadiusEdge{1.1, false, kInf, false,
                         "below 1.1 refinement may not end; the theory needs more than 2, 1.5 works in practice"};
-const Range kPositive{0, true, kInf, false, "leave the option out for no limit"};
+const Range kLength{0, true, kInf, false, "leave the option out for no limit", 1e-150};
+const Range kVolume{0, true, kInf, false, "leave the option out for no limit", 1e-300};
 const Range kSliverAngle{0, true, 60, true,
                          "the regular tetrahedron's dihedral angle is 70.53 degrees: from 60 up nearly every "
                          "tetrahedron counts as a sliver"};
 const Range kOmega{0, true, 1, true, "omega0 of Cheng and Dey, Section 3.3"};
 const Range kDelta{0, true, 0.5, true, "delta below 1/2 keeps the weighted balls disjoint"};
-const Range kDeflection{0, true, kInf, false, "leave the option out for a deflection relative to the diagonal"};
+const Range kDeflection{0, true, kInf, false, "leave the option out for a deflection relative to the diagonal",
+                        1e-150};
 const Range kRelativeDeflection{0, true, 1, true, "a fraction of the bounding-box diagonal"};
 
 void add_check(CLI::App& command, const std::string& name, const CLI::Validator& validator) {
@@ -120,8 +129,8 @@ void add_check(CLI::App& command, const std::string& name, const CLI::Validator&
 
 void add_mesh_option_checks(CLI::App& command) {
   add_check(command, "--radius-edge", real_in(kRadiusEdge));
-  add_check(command, "--max-edge", real_in(kPositive));
-  add_check(command, "--max-volume", real_in(kPositive));
+  add_check(command, "--max-edge", real_in(kLength));
+  add_check(command, "--max-volume", real_in(kVolume));
   add_check(command, "--max-vertices", count_at_least_one());
   add_check(command, "--sliver-angle", real_in(kSliverAngle));
   add_check(command, "--omega", real_in(kOmega));
@@ -135,16 +144,16 @@ std::string output_path_problem(const std::string& output) {
   try {
     (void)mesh_format_from_path(output);
   } catch (const InputError& e) {
-    return e.message() + ": " + shown(output);
+    return e.message() + ": " + shown_path(output);
   }
   const auto slash = output.rfind('/');
   const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : output.substr(0, slash));
   struct stat st {};
-  if (::stat(dir.c_str(), &st) != 0) return "the directory " + shown(dir) + " does not exist";
-  if (!S_ISDIR(st.st_mode)) return shown(dir) + " is not a directory";
-  if (::access(dir.c_str(), W_OK | X_OK) != 0) return "the directory " + shown(dir) + " is not writable";
+  if (::stat(dir.c_str(), &st) != 0) return "the directory " + shown_path(dir) + " does not exist";
+  if (!S_ISDIR(st.st_mode)) return shown_path(dir) + " is not a directory";
+  if (::access(dir.c_str(), W_OK | X_OK) != 0) return "the directory " + shown_path(dir) + " is not writable";
   struct stat out {};
-  if (::stat(output.c_str(), &out) == 0 && S_ISDIR(out.st_mode)) return shown(output) + " is a directory";
+  if (::stat(output.c_str(), &out) == 0 && S_ISDIR(out.st_mode)) return shown_path(output) + " is a directory";
   return {};
 }
 

@@ -6,15 +6,16 @@
 // Option ranges (README.md, "The command line"; each validator's text also shows in `qualmesh mesh --help`):
 //   --radius-edge          finite, >= 1.1 (the theory needs > 2; below 1.1 refinement may not end: 1.0 runs
 //                          without end on examples/l_bracket.poly, 1.05 needs 100000 vertices there)
-//   --max-edge             finite, > 0 (leave the option out for no limit)
-//   --max-volume           finite, > 0 (leave the option out for no limit)
+//   --max-edge             finite, > 0 (leave the option out for no limit); below 1e-150 refused as too small to
+//                          compute with (its square underflows to 0, which read as no limit)
+//   --max-volume           finite, > 0 (leave the option out for no limit); below 1e-300 refused likewise
 //   --max-vertices         integer >= 1, and at least the input's vertex count
 //   --sliver-angle         finite, in (0, 60) degrees (the regular tetrahedron's dihedral angle is 70.53: at 60
 //                          almost every tetrahedron is a sliver, joint.off's pumping takes 20 times as long and
 //                          gains nothing)
 //   --omega                in (0, 1) (omega0 of the paper, Section 3.3)
 //   --delta                in (0, 0.5) (delta < 1/2 keeps the weighted balls disjoint)
-//   --deflection           finite, > 0 (CAD inputs; leave it out for the relative deflection)
+//   --deflection           finite, > 0 (CAD inputs; leave it out for the relative deflection); below 1e-150 refused
 //   --relative-deflection  in (0, 1) (CAD inputs)
 // NaN, infinities and anything that is not a number (for --max-vertices: a whole number) are refused.
 #pragma once
