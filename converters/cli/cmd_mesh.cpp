@@ -17,6 +17,7 @@
 #include "qualmesh/error.h"
 #include "qualmesh/mesh_io.h"
 #include "qualmesh/mesher.h"
+#include "qualmesh/second_order.h"
 
 namespace qualmesh::cli {
 
@@ -30,7 +31,32 @@ struct MeshArgs {
   bool verbose = false;
   bool no_pump = false;
   bool no_sliver_insertion = false;
+  int order = 1;  // 1: 4-node tetrahedra, 2: 10-node (second_order.h)
 };
+
+// After meshing: CAD inputs get their boundary nodes (and mid nodes) onto the CAD faces and edges
+// (fit_mesh_to_cad); other inputs are made second order when asked. Prints one summary line.
+void finish_mesh(const MeshArgs& args, TetMesh& mesh) {
+  const bool cad = is_cad_input(args.input);
+  if (!cad) {
+    if (args.order == 2) make_second_order(mesh);
+    return;
+  }
+  CadFitOptions fit;
+  fit.second_order = args.order == 2;
+  const CadFitReport r = fit_to_cad_input(args.input, args.input_options, fit, mesh);
+  std::printf("cad fit:     %zu boundary nodes onto their CAD faces/edges (max offset %.3g): %zu in full (%zu moving "
+              "interior nodes too), %zu part way, %zu not moved (an element would invert)\n",
+              r.num_corner_targets, r.max_offset_before, r.corners.num_full, r.corners.num_dragged,
+              r.corners.num_partial, r.corners.num_refused);
+  if (fit.second_order)
+    std::printf("curving:     %zu mid nodes onto their CAD faces/edges: %zu in full (%zu moving interior nodes too), "
+                "%zu relaxed toward straight, %zu left straight; min Jacobian ratio %.3g, %zu elements below %.2g; %zu "
+                "flat elements (flat in the straight mesh already)\n",
+                r.num_mid_targets, r.mids.num_full, r.mids.num_dragged, r.mids.num_partial, r.mids.num_refused,
+                r.mids.min_jacobian_ratio, r.mids.num_bad_elements, fit.moves.min_jacobian_ratio,
+                r.mids.num_flat_elements);
+}
 
 int run_mesh(MeshArgs& args) {
   if (args.no_pump) args.options.pump = false;
@@ -51,9 +77,10 @@ int run_mesh(MeshArgs& args) {
   }
   LogCallback log;
   if (args.verbose) log = [](const std::string& line) { std::cerr << "qualmesh: " << line << "\n"; };
-  const MeshResult result = mesh_plc(plc, args.options, progress, log);
+  MeshResult result = mesh_plc(plc, args.options, progress, log);
   if (tty) std::fprintf(stderr, "\r%70s\r", "");
   if (!check_mesh_result(plc, args.input, args.options, result)) return kExitBadInput;  // no tetrahedron
+  finish_mesh(args, result.mesh);
   write_tet_mesh(result.mesh, args.output);
   const MeshStats& st = result.stats;
   std::printf("input:       %zu vertices, %zu facets\n", plc.vertices.size(), plc.facets.size());
@@ -102,7 +129,7 @@ int run_mesh(MeshArgs& args) {
 void register_mesh_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<MeshArgs>();
   CLI::App* command = app.add_subcommand("mesh", "Quality tetrahedral mesh of a PLC (weighted Delaunay refinement, Rules 1-4 and pumping)");
-  command->add_option("input", args->input, "Input model (.poly .smesh .off .stl .obj .mesh)")->required();
+  command->add_option("input", args->input, "Input model: CAD (.step .stp .iges .igs .brep .fcstd), OpenSCAD (.scad), or a surface/PLC (.poly .smesh .off .stl .obj .mesh)")->required();
   command->add_option("-o,--output", args->output, "Output mesh (.vtu .node .msh .mesh .inp)")->required();
   add_input_options(*command, args->input_options);
   command->add_option("--radius-edge", args->options.radius_edge_bound,
@@ -129,6 +156,9 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
                     "Plain Delaunay refinement: no Rule 4, no pumping (all weights zero)");
   command->add_flag("--no-sliver-insertion", args->no_sliver_insertion,
                     "Pumping alone: no points inserted at the slivers it leaves");
+  command->add_option("--order", args->order,
+                      "Element order: 1 (4-node tetrahedra, default) or 2 (10-node; mid nodes on curved CAD faces)")
+      ->check(CLI::IsMember({1, 2}));
   command->add_flag("-v,--verbose", args->verbose, "Log the stages on stderr");
   add_mesh_option_checks(*command);  // ranges and the output format, at parse time (mesh_checks.h)
   command->callback([args, &exit_code] { exit_code = run_mesh(*args); });

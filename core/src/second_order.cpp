@@ -45,6 +45,18 @@ double element_measure(const TetMesh& mesh, std::size_t t) {
   return mesh.is_second_order() ? tet10_jacobian(mesh, t).ratio() : signed_volume6(mesh, t);
 }
 
+// Corners within rounding of a plane: |6V| <= 1e-12 L^3, L the longest edge.
+bool is_flat(const TetMesh& mesh, std::size_t t) {
+  double sq_longest = 0;
+  for (const auto& e : kTetEdges) {
+    const Point3& a = mesh.points[mesh.tets[t][e[0]]];
+    const Point3& b = mesh.points[mesh.tets[t][e[1]]];
+    sq_longest = std::max(sq_longest, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                          (a[2] - b[2]) * (a[2] - b[2]));
+  }
+  return std::fabs(signed_volume6(mesh, t)) <= 1e-12 * sq_longest * std::sqrt(sq_longest);
+}
+
 }  // namespace
 
 void make_second_order(TetMesh& mesh) {
@@ -130,33 +142,75 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
     if (before <= 0 || (quadratic && before < options.min_jacobian_ratio)) return now >= before;  // no worse
     return now > 0 && now >= bar;
   };
-  std::vector<double> before;
-  for (const NodeMove& move : moves) {
-    Point3& p = mesh.points[move.node];
-    const Point3 start = p;
-    const auto& elements = elements_of[move.node];
-    before.resize(elements.size());
+  // Interior nodes (on no boundary or internal face): the ones a move may drag along.
+  std::vector<std::uint8_t> on_face(mesh.points.size(), 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (Index v : mesh.faces[f]) on_face[v] = 1;
+    if (f < mesh.face_mid.size())
+      for (Index v : mesh.face_mid[f]) on_face[v] = 1;
+  }
+  // The nodes of element t (corners, then mid nodes for second order).
+  const auto element_nodes = [&](std::size_t t) {
+    std::vector<Index> nodes(mesh.tets[t].begin(), mesh.tets[t].end());
+    if (quadratic) nodes.insert(nodes.end(), mesh.tet_mid[t].begin(), mesh.tet_mid[t].end());
+    return nodes;
+  };
+  // Moves `nodes` by `shift` (all of them) and tells whether every element around them stays acceptable; on
+  // failure everything is put back and `spoiled` lists the elements that were not.
+  std::vector<std::size_t> spoiled;
+  const auto try_shift = [&](const std::vector<Index>& nodes, const Point3& shift) {
+    std::vector<std::uint32_t> elements;
+    for (Index v : nodes) elements.insert(elements.end(), elements_of[v].begin(), elements_of[v].end());
+    std::sort(elements.begin(), elements.end());
+    elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
+    std::vector<double> before(elements.size());
     for (std::size_t i = 0; i < elements.size(); ++i) before[i] = element_measure(mesh, elements[i]);
+    for (Index v : nodes)
+      for (int c = 0; c < 3; ++c) mesh.points[v][c] += shift[c];
+    spoiled.clear();
+    for (std::size_t i = 0; i < elements.size(); ++i)
+      if (!acceptable(elements[i], before[i])) spoiled.push_back(elements[i]);
+    if (spoiled.empty()) return true;
+    for (Index v : nodes)
+      for (int c = 0; c < 3; ++c) mesh.points[v][c] -= shift[c];
+    return false;
+  };
+  for (const NodeMove& move : moves) {
+    const Point3 start = mesh.points[move.node];
+    const Point3 full{move.target[0] - start[0], move.target[1] - start[1], move.target[2] - start[2]};
     double done = 0;
-    for (double fraction : {1.0, 0.75, 0.5, 0.25}) {
-      for (int c = 0; c < 3; ++c) p[c] = start[c] + fraction * (move.target[c] - start[c]);
-      bool ok = true;
-      for (std::size_t i = 0; i < elements.size() && ok; ++i) ok = acceptable(elements[i], before[i]);
-      if (ok) {
-        done = fraction;
-        break;
+    if (try_shift({move.node}, full)) {
+      done = 1;
+    } else if (options.drag_interior) {
+      std::vector<Index> group{move.node};
+      for (std::size_t t : spoiled)
+        for (Index v : element_nodes(t))
+          if (!on_face[v]) group.push_back(v);
+      std::sort(group.begin() + 1, group.end());
+      group.erase(std::unique(group.begin() + 1, group.end()), group.end());
+      if (group.size() > 1 && try_shift(group, full)) {
+        done = 1;
+        ++report.num_dragged;
       }
     }
-    if (done == 0) p = start;
+    for (double fraction : {0.75, 0.5, 0.25}) {
+      if (done > 0) break;
+      if (try_shift({move.node}, {fraction * full[0], fraction * full[1], fraction * full[2]})) done = fraction;
+    }
     if (done == 1) ++report.num_full;
     else if (done > 0) ++report.num_partial;
     else ++report.num_refused;
+    const Point3& p = mesh.points[move.node];
     const double left = std::sqrt((move.target[0] - p[0]) * (move.target[0] - p[0]) +
                                   (move.target[1] - p[1]) * (move.target[1] - p[1]) +
                                   (move.target[2] - p[2]) * (move.target[2] - p[2]));
     report.max_distance_left = std::max(report.max_distance_left, left);
   }
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    if (is_flat(mesh, t)) {
+      ++report.num_flat_elements;
+      continue;
+    }
     const double measure = element_measure(mesh, t);
     if (quadratic) {
       report.min_jacobian_ratio = std::min(report.min_jacobian_ratio, measure);

@@ -45,6 +45,10 @@ struct NodeMoveOptions {
   // A linear element is acceptable when its volume stays positive and at least this fraction of its volume before
   // the move (a move onto a curved face of at most the chordal deflection never needs more).
   double min_volume_fraction = 0.2;
+  // When the full move of a boundary node would make an element unacceptable, first try moving that element's
+  // interior nodes (nodes on no face of TetMesh::faces) by the same displacement too, so that the boundary node
+  // still reaches its target; only then relax it part of the way.
+  bool drag_interior = true;
 };
 
 struct NodeMoveReport {
@@ -52,14 +56,18 @@ struct NodeMoveReport {
   std::size_t num_full = 0;       // made in full: the node is at its target
   std::size_t num_partial = 0;    // made part of the way (an element would have been unacceptable at the target)
   std::size_t num_refused = 0;    // not made at all
+  std::size_t num_dragged = 0;    // full moves made by also moving interior nodes (NodeMoveOptions::drag_interior)
   double max_distance_left = 0;   // largest distance between a node and its target after the moves, model units
-  std::size_t num_bad_elements = 0;  // elements unacceptable after all moves (before any move they all were fine)
-  double min_jacobian_ratio = 1;  // over all second-order elements after the moves (1 for a linear mesh)
+  std::size_t num_bad_elements = 0;  // elements unacceptable after all moves, not counting the flat ones below
+  // Elements whose corners are flat (|6V| <= 1e-12 of the longest edge cubed): no move made them so (a move never
+  // makes an element worse than acceptable), the straight mesh had them; their Jacobian ratio means nothing.
+  std::size_t num_flat_elements = 0;
+  double min_jacobian_ratio = 1;  // over the second-order elements that are not flat (1 for a linear mesh)
 };
 
 // Moves each node towards its target, in the order given, keeping every element that has the node acceptable
-// (NodeMoveOptions): the full move when that is acceptable, else the largest of 3/4, 1/2, 1/4 of it that is, else
-// none. An element that was unacceptable before a move only has to get no worse. Mutates mesh.points only.
+// (NodeMoveOptions): the full move when that is acceptable, else the full move dragging the interior nodes of the
+// elements it spoils, else the largest of 3/4, 1/2, 1/4 of it that is acceptable, else none. An element that was unacceptable before a move only has to get no worse. Mutates mesh.points only.
 NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& moves,
                                   const NodeMoveOptions& options = {});
 
