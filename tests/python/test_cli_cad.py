@@ -63,6 +63,9 @@ def test_mesh_fcstd_writes_calculix_deck_with_one_elset_per_solid(run_qualmesh, 
 
 
 def test_mesh_step_conforms_to_its_cad_model(run_qualmesh, tmp_path):
+    """`check --ref part.step` judges the mesh against the CAD model: every boundary node within its face's
+    tolerance (measured by OpenCASCADE), and the volume closer to the CAD volume (360939.79) than the tessellation's
+    chordal volume (360555, 1.07e-3 low) since the boundary nodes were moved onto the curved faces."""
     step = shared_file("data/cad/part.step")
     out = tmp_path / "part.vtu"
     proc = run_qualmesh("mesh", step, "-o", out, timeout=600)
@@ -71,9 +74,9 @@ def test_mesh_step_conforms_to_its_cad_model(run_qualmesh, tmp_path):
     report = json.loads(check.stdout)
     assert report["num_tets"] > 1000
     assert report["num_nonpositive_tets"] == 0
-    assert report["num_faces_off_input"] == 0
-    assert report["volume_relative_error"] < 1e-9
-    assert report["max_facet_area_relative_error"] < 1e-9
+    assert report["cad"]["num_nodes"] > 1000
+    assert report["cad"]["num_beyond_tolerance"] == 0
+    assert report["cad"]["volume_relative_error"] < 0.6e-3
     assert check.returncode == 0, check.stdout[:2000]
 
 
