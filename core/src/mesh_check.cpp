@@ -7,7 +7,9 @@
 //     the face against the other's orthosphere, by the exact power test (mesh_check_regularity.cpp).
 //  4. With a reference PLC: every boundary face must lie on an input facet (its three vertices within tolerance of
 //     the facet's plane, its centroid inside the facet's region), the faces on each facet must cover its area,
-//     and the mesh volume must equal the volume the input encloses (mesh_check_reference.cpp).
+//     and the mesh volume must equal the volume the input encloses (mesh_check_reference.cpp). This part works
+//     relative to the input's bounding-box centre, with a distance tolerance of the model's size and position
+//     (mesh_check_frame.cpp), so that a model far from the origin checks as it does at the origin.
 // Facet candidates for a face are found through a uniform grid over the facets' bounding boxes.
 #include "qualmesh/mesh_check.h"
 
@@ -301,7 +303,10 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
   // 4. Conformity to the reference.
   if (reference) {
     report.has_reference = true;
-    const Plc& plc = *reference;
+    // Everything below works relative to the input's bounding-box centre (mesh_check_frame.cpp).
+    const check::LocalFrame frame = check::make_local_frame(*reference, mesh.points);
+    const Plc plc = frame.local(*reference);
+    const std::vector<Point3> points = frame.local(mesh.points);
     std::vector<FacetGeometry> facets;
     facets.reserve(plc.facets.size());
     for (const Facet& facet : plc.facets) facets.push_back(check::make_facet_geometry(plc, facet));
@@ -321,27 +326,33 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
     double diagonal = bounding_box(plc).diagonal();
     if (!(diagonal > 0)) {
       BoundingBox box;
-      for (const Point3& p : mesh.points) box.add(p);
+      for (const Point3& p : points) box.add(p);
       diagonal = box.diagonal();
     }
-    const double tolerance = options.tolerance * diagonal;
+    // Relative to the model's size, and at least a few ulps of where it lies (a unit cube at 1e15 has its
+    // coordinates 0.125 apart).
+    const double tolerance = options.tolerance * diagonal + frame.position_tolerance();
     const FacetGrid grid(facets, tolerance);
     std::vector<double> covered(facets.size(), 0);
     // The input facet a face lies on: its three vertices within tolerance of the plane, its centroid inside.
     const auto find_facet = [&](const std::array<Index, 3>& key, double& area) {
-      const Point3& a = mesh.points[key[0]];
-      const Point3& b = mesh.points[key[1]];
-      const Point3& c = mesh.points[key[2]];
+      const Point3& a = points[key[0]];
+      const Point3& b = points[key[1]];
+      const Point3& c = points[key[2]];
       const Point3 centroid{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3};
       const Point3 n = cross(sub(b, a), sub(c, a));
       area = std::sqrt(dot(n, n)) / 2;
+      // The nearest such facet: with a tolerance of a few ulps far from the origin, more than one plane can pass.
+      Index best = kNoIndex;
+      double best_distance = inf;
       for (Index f : grid.candidates(centroid)) {
         const FacetGeometry& g = facets[f];
-        const auto off_plane = [&](const Point3& p) { return std::fabs(dot(g.normal, p) - g.offset) > tolerance; };
-        if (off_plane(a) || off_plane(b) || off_plane(c)) continue;
-        if (g.contains(centroid)) return f;
+        const auto distance = [&](const Point3& p) { return std::fabs(dot(g.normal, p) - g.offset); };
+        const double d = std::max({distance(a), distance(b), distance(c)});
+        if (d > tolerance || !(d < best_distance)) continue;
+        if (g.contains(centroid)) best = f, best_distance = d;
       }
-      return kNoIndex;
+      return best;
     };
     for (const auto& [key, tet] : boundary) {
       double area = 0;

@@ -34,6 +34,21 @@ struct FacetGeometry {
 
 FacetGeometry make_facet_geometry(const Plc& plc, const Facet& facet);
 
+// Coordinates relative to the centre of the input's bounding box (mesh_check_frame.cpp): the reference side of the
+// checker works in them so that its results do not depend on where the model lies.
+struct LocalFrame {
+  Point3 origin{0, 0, 0};
+  double max_abs_coordinate = 0;  // largest |coordinate| of the box, before shifting
+  Point3 local(const Point3& p) const;
+  std::vector<Point3> local(const std::vector<Point3>& points) const;
+  Plc local(const Plc& plc) const;  // vertices, volume holes, facet holes and region seeds shifted
+  // A distance below which two absolute positions cannot be told apart: 2 epsilon * max_abs_coordinate (2 to 4 ulps).
+  double position_tolerance() const;
+};
+
+// The frame of `plc` (of `mesh_points` when the PLC has no vertex).
+LocalFrame make_local_frame(const Plc& plc, const std::vector<Point3>& mesh_points);
+
 struct ReferenceVolume {
   double volume = 0;   // NaN when unsupported
   std::string method;  // "closed-shells (...)" or "cells (...)"

@@ -18,6 +18,7 @@ Categories (issue 18, "What hostile input does today"):
   usage-*    the command line itself
   read-*     malformed files (tests/data/malformed), refused by the readers with their file, line and message
   ok-*       what works and must keep working (exit 0, a mesh written, nothing on stderr)
+  far-*      5. models far from the origin: `check` and `mesh` work as at the origin
 """
 import re
 from dataclasses import dataclass, field
@@ -230,3 +231,14 @@ for option, value in [("--radius-edge", "1.1"), ("--radius-edge", "1e300"), ("--
 for ext in ["vtu", "VTU", "msh", "mesh", "inp", "node", "ele"]:
     case(f"ok-out-{ext}", ["mesh", BOX, "-o", "{outdir}/mesh." + ext], 0, r"^$")
 case("ok-info-cube", ["info", "{in}/cube.off"], 0, r"^$")
+
+# ---------------------------------------------------------------------------------------------------------------
+# far-*: models far from the origin (issue 18 item 5). `check` judges in a frame centred on the input's bounding
+# box, with a tolerance of the model's size plus a few ulps of its position: the cube at 1e9 or 1e15 checks clean
+# (it "enclosed 0" before), and a vertex 1e-5 off the input at 1e9 is still found (exit 3).
+for name in ["1e9", "1e15", "minus_1e15"]:
+    case(f"far-check-cube-{name}", ["check", f"{{in}}/cube_mesh_{name}.node", "--ref", f"{{in}}/cube_offset_{name}.off"],
+         0, r"^$")
+    case(f"far-mesh-cube-{name}", ["mesh", f"{{in}}/cube_offset_{name}.off", "-o", "{out}"], 0, r"^$")
+case("far-check-cube-1e9-vertex-off", ["check", "{in}/cube_mesh_1e9_bent.node", "--ref", "{in}/cube_offset_1e9.off"],
+     3, r"")

@@ -126,6 +126,37 @@ INPUTS = {
 }
 
 
+def _kuhn_tets():
+    """Kuhn's six tetrahedra of CUBE along the diagonal 0-6 (CUBE's ids), each positively oriented."""
+    tets = []
+    for a, b in [(1, 2), (1, 5), (3, 2), (3, 7), (4, 5), (4, 7)]:
+        t = [0, a, b, 6]
+        p = [CUBE[i] for i in t]
+        u, v, w = ([p[k][j] - p[0][j] for j in range(3)] for k in (1, 2, 3))
+        det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+               + u[2] * (v[0] * w[1] - v[1] * w[0]))
+        tets.append(t if det > 0 else [t[1], t[0], t[2], t[3]])
+    return tets
+
+
+def tetgen_mesh(vertices, tets):
+    """A TetGen .node and .ele pair (1-based), as (node text, ele text)."""
+    node = [f"{len(vertices)} 3 0 0"] + [f"{i + 1} {x!r} {y!r} {z!r}" for i, (x, y, z) in enumerate(vertices)]
+    ele = [f"{len(tets)} 4 0"] + [" ".join(str(i) for i in (k + 1, *(j + 1 for j in t))) for k, t in enumerate(tets)]
+    return "\n".join(node) + "\n", "\n".join(ele) + "\n"
+
+
+# check far from the origin (issue 18 item 5): the cube moved by D, as an input and as a 6-tet mesh of it; and the
+# same mesh with one vertex 1e-5 (80 ulps) off the input at 1e9, which check must still find.
+for _name, _d in [("1e9", 1e9), ("1e15", 1e15), ("minus_1e15", -1e15)]:
+    INPUTS[f"cube_offset_{_name}.off"] = off(moved(CUBE, (_d, _d, _d)), CUBE_QUADS)
+    INPUTS[f"cube_mesh_{_name}.node"], INPUTS[f"cube_mesh_{_name}.ele"] = tetgen_mesh(moved(CUBE, (_d, _d, _d)),
+                                                                                   _kuhn_tets())
+_off_by = moved(CUBE, (1e9, 1e9, 1e9))
+_off_by[6] = (_off_by[6][0], _off_by[6][1], _off_by[6][2] + 1e-5)
+INPUTS["cube_mesh_1e9_bent.node"], INPUTS["cube_mesh_1e9_bent.ele"] = tetgen_mesh(_off_by, _kuhn_tets())
+
+
 def write_inputs(folder):
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)

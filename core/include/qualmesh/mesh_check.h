@@ -26,7 +26,9 @@ enum class RegularityCheck {
 
 struct CheckOptions {
   // Distance tolerance for "a vertex lies on a facet's plane", relative to the bounding-box diagonal of the
-  // reference PLC (of the mesh when there is none).
+  // reference PLC (of the mesh when there is none), plus 2 epsilon times the largest absolute coordinate (a model far
+  // from the origin cannot be placed more precisely). Facet planes, areas and volumes are computed relative to the
+  // bounding-box centre, so results do not depend on where the model lies.
   double tolerance = 1e-9;
   // Largest accepted relative error of the mesh volume against the reference volume, and of each facet's
   // covered area against its area. Floating-point sums over millions of tetrahedra stay far below these.
