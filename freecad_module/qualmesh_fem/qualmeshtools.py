@@ -162,7 +162,8 @@ def build_command(exe, input_path, output_path, params, options):
 # Coarse progress (percent) from the stages `qualmesh -v` logs on stderr, then the summary on stdout; the reading
 # into FreeCAD takes the last steps.
 _STAGES = (("validation", 5, "validating the model"), ("input:", 10, "model read"),
-           ("regions", 15, "refining"), ("rule 4", 40, "Rule 4 (slivers near the boundary)"),
+           ("regions", 15, "refining"), ("refinement", 25, "refining"),
+           ("rule 4", 40, "Rule 4 (slivers near the boundary)"),
            ("pumping", 55, "pumping weights"), ("sliver insertion", 70, "points at slivers"),
            ("cad fit", 88, "mesh written"), ("output:", 90, "mesh written"))
 
