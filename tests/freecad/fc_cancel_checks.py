@@ -55,6 +55,21 @@ def main():
         RESULT["api_no_solid"] = "returned"
     except qualmesh_fem.QualMeshError as e:
         RESULT["api_no_solid"] = "refused: {}".format(e)
+    # the two readers (QualMesh's .inp with numpy, its .unv through Fem.read) give the same mesh and groups
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from fchelpers import canonical_tets, mesh_groups
+    cylinder = Part.makeCylinder(5, 20)
+    meshes = {}
+    for reader in ("inp", "unv"):
+        os.environ["QUALMESH_FEM_READER"] = reader
+        meshes[reader] = qualmesh_fem.mesh_shape(cylinder, max_size=4)
+    del os.environ["QUALMESH_FEM_READER"]
+    node_groups = {r: sorted(g for g in mesh_groups(m) if g[1] in ("Node", "Volume", "Face"))
+                   for r, m in meshes.items()}
+    RESULT["readers"] = {"same_tets": canonical_tets(meshes["inp"]) == canonical_tets(meshes["unv"]),
+                         "same_groups": node_groups["inp"] == node_groups["unv"],
+                         "unv_edge_groups": sum(1 for g in mesh_groups(meshes["unv"]) if g[1] == "Edge"),
+                         "groups": {r: len(g) for r, g in node_groups.items()}}
     lines = []
     femmesh = qualmesh_fem.mesh_shape(Part.makeBox(10, 10, 10), max_size=4, order=1, log=lines.append)
     RESULT["api_linear"] = {"nodes": femmesh.NodeCount, "volumes": femmesh.VolumeCount,

@@ -12,47 +12,15 @@ import sys
 import time
 import traceback
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fchelpers import canonical_tets, mesh_groups, tet_facts  # noqa: E402
+
 RESULT = {"case": os.environ.get("QUALMESH_FC_CASE"), "errors": []}
 
 
 def _write_result():
     with open(os.environ["QUALMESH_FC_RESULT"], "w") as f:
         json.dump(RESULT, f, indent=1, sort_keys=True)
-
-
-def mesh_groups(femmesh):
-    return sorted((femmesh.getGroupName(g), femmesh.getGroupElementType(g), len(femmesh.getGroupElements(g)))
-                  for g in femmesh.Groups)
-
-
-def tet_facts(femmesh):
-    """Orientation counts of the corner tets (SMESH: negative) and whether every mid node is its edge's midpoint
-    or off it (curved): {"negative": n, "positive": n}."""
-    negative = positive = 0
-    for v in femmesh.Volumes:
-        ids = femmesh.getElementNodes(v)
-        p = [femmesh.getNodeById(i) for i in ids[:4]]
-        det = (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0])
-        if det < 0:
-            negative += 1
-        else:
-            positive += 1
-    return {"negative": negative, "positive": positive}
-
-
-def canonical_tets(femmesh):
-    """Each tet as (sorted corners, orientation sign, {edge: mid node}) in SMESH's node order, for comparing two
-    readers of the same mesh independently of where each starts its corner cycle."""
-    pairs = [(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)]
-    result = {}
-    for v in femmesh.Volumes:
-        ids = femmesh.getElementNodes(v)
-        p = [femmesh.getNodeById(i) for i in ids[:4]]
-        sign = 1 if (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) > 0 else -1
-        mids = tuple(sorted((tuple(sorted((ids[a], ids[b]))), ids[4 + k]) for k, (a, b) in enumerate(pairs))) \
-            if len(ids) == 10 else ()
-        result[v] = (tuple(sorted(ids[:4])), sign, mids)
-    return result
 
 
 def face_checks(femmesh, shape, group_elements):

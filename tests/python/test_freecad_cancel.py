@@ -22,5 +22,7 @@ def test_cancel_and_refusals(tmp_path, qualmesh_exe):
     assert cancel["wall_s"] < 10, cancel
     assert facts["api_cancel"].startswith("cancelled"), facts["api_cancel"]
     assert facts["api_no_solid"].startswith("refused") and "no solid" in facts["api_no_solid"]
+    readers = facts["readers"]
+    assert readers["same_tets"] and readers["same_groups"] and readers["unv_edge_groups"] == 3, readers
     linear = facts["api_linear"]
     assert linear["nodes_per_tet"] == 4 and linear["volumes"] > 10 and linear["log_lines"] > 5, linear
