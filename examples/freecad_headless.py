@@ -24,7 +24,6 @@ HERE = os.path.dirname(os.path.abspath(__file__)) if "__file__" in globals() els
 
 
 def build_analysis(doc, step_path, max_size):
-    import FreeCAD
     import ObjectsFem
     import Part
     import qualmesh_fem

@@ -3,9 +3,10 @@
 # QualMesh numbers the faces, edges and solids of the shape it healed (TopExp::MapShapes order), which is FreeCAD's
 # Face<i>/Edge<i>/Solid<i> naming of the shape it exported, unless healing reordered them: measured on a
 # Part::Cylinder, QualMesh's Edge2 and Edge3 are FreeCAD's Edge3 and Edge2. So every group is checked against
-# the entity FreeCAD gives its name to, on five of its nodes (a majority must lie on it) (nodes of one face only, or of one edge only: they
-# tell neighbouring entities apart), and a group whose nodes lie on another entity is renamed after that one. A
-# renaming is applied only when it is one-to-one; otherwise the names are kept and a warning says so.
+# the entity FreeCAD gives its name to, on five of its nodes, a majority of which must lie on it (nodes of one face
+# only, or of one edge only: they tell neighbouring entities apart); a group whose nodes lie on another entity is
+# renamed after that one. A renaming is applied only when it is one-to-one; otherwise the names are kept and a
+# warning says so.
 # Cost: five point-to-shape distances per group when the names agree (about 0.1 s on part.step's 96 groups).
 
 import numpy as np

@@ -559,7 +559,7 @@ class QualMeshTools(object):
         """Mesh, blocking; returns a MeshRunResult (never raises for a meshing failure)."""
         try:
             self.start(log)
-        except QualMeshError as e:
+        except Exception as e:  # QualMeshError, or the shape's BREP export failing
             return MeshRunResult(MeshRunStatus.FAILED, str(e), log=self.log_lines)
         self.run.wait(on_lines=(lambda lines: [log(l) for _, l in lines]) if log else None,
                       cancel_event=cancel_event)

@@ -42,6 +42,16 @@ def main():
                         "unchanged": (obj.FemMesh.NodeCount, obj.FemMesh.VolumeCount, obj.Nodes, obj.Tetrahedra,
                                       obj.MinDihedralAngle.Value, obj.CharacteristicLengthMax.Value) == expected}
 
+    # a mesh region (FEM's own object): its local size reaches qualmesh, or the run says it could not
+    import ObjectsFem
+    region = ObjectsFem.makeMeshRegion(doc, obj, 1.0, "Region")
+    region.References = [(box, "Face1")]
+    obj.CharacteristicLengthMax = 5.0
+    regional = qualmesh_fem.QualMeshTools(obj).create_mesh()
+    command = [line for line in regional.log if " mesh " in line and "--order" in line]
+    RESULT["region"] = {"status": regional.status, "warnings": regional.warnings,
+                        "local_size_passed": bool(command) and "--local-size Face1=1.0" in command[0]}
+
     # the API: mesh_shape, cancelled and refused
     cancel = threading.Event()
     threading.Timer(1.0, cancel.set).start()

@@ -231,6 +231,11 @@ def s6_headless_document():
 
 def s7_done():
     screenshot("5_headless_document_in_gui")
+    FreeCADGui.activateWorkbench("QualMeshWorkbench")
+    QtGui.QApplication.processEvents()
+    bars = [b for b in main_window().findChildren(QtGui.QToolBar) if b.windowTitle() == "QualMesh" and b.isVisible()]
+    RESULT["own_workbench"] = {"active": FreeCADGui.activeWorkbench().name(),
+                               "actions": [a.text() for b in bars for a in b.actions() if a.text()]}
     finish(0)
 
 

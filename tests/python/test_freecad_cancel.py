@@ -22,6 +22,10 @@ def test_cancel_and_refusals(tmp_path, qualmesh_exe):
     assert cancel["wall_s"] < 10, cancel
     assert facts["api_cancel"].startswith("cancelled"), facts["api_cancel"]
     assert facts["api_no_solid"].startswith("refused") and "no solid" in facts["api_no_solid"]
+    region = facts["region"]
+    assert region["status"] == "succeeded", region
+    assert region["local_size_passed"] or any("MeshRegionList ignored (Face1=1.0)" in w
+                                              for w in region["warnings"]), region
     readers = facts["readers"]
     assert readers["same_tets"] and readers["same_groups"] and readers["unv_edge_groups"] == 3, readers
     linear = facts["api_linear"]

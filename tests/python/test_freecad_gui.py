@@ -68,4 +68,6 @@ def test_gui_toolbar_panel_apply_cancel(tmp_path, qualmesh_exe):
     assert cancel["panel_still_open"], "the first Cancel stops the run, the panel stays"
     assert facts["panel_closed"], "the second Cancel closes the panel"
     assert facts["headless_doc"]["meshes"] == 1 and facts["headless_doc"]["view_provider"], facts["headless_doc"]
+    own = facts["own_workbench"]
+    assert own["active"] == "QualMeshWorkbench" and "FEM mesh from shape by QualMesh" in own["actions"], own
     assert len(facts["screens"]) >= 5, facts["steps"]

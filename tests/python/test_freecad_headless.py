@@ -3,8 +3,8 @@
 Each case runs tests/freecad/fc_model_checks.py in its own freecadcmd (a temporary HOME holds the addon link) and
 asserts the facts it writes: the mesh is made and its statistics agree with it; every node group Face<i> is
 exactly what FEM's geometric search `getNodesByFace` finds on FreeCAD's Face<i> (planar faces), or at least a
-superset of it (curved faces and their neighbours: see test_faces_every_node_on_the_surface); every FEM constraint on a face
-finds our group's nodes; FreeCAD's CalculiX writer writes a C3D10 deck that ccx solves; save and reopen keep
+superset of it (curved faces and their neighbours: see test_faces_every_node_on_the_surface); every FEM constraint
+on a face finds our group's nodes; FreeCAD's CalculiX writer writes a C3D10 deck that ccx solves; save and reopen keep
 mesh, groups, proxy and statistics; a failing run leaves the document exactly as it was.
 """
 import math
