@@ -14,11 +14,16 @@ namespace qualmesh::cli {
 
 namespace {
 
-bool has_cad_extension(const std::string& path) {
+std::string lower_extension(const std::string& path) {
   const auto dot = path.rfind('.');
-  if (dot == std::string::npos) return false;
+  if (dot == std::string::npos) return "";
   std::string ext = path.substr(dot + 1);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+bool has_cad_extension(const std::string& path) {
+  const std::string ext = lower_extension(path);
   for (const char* known : {"step", "stp", "iges", "igs", "brep", "brp", "fcstd", "scad"}) {
     if (ext == known) return true;
   }
@@ -68,6 +73,8 @@ Plc load_input(const std::string& path, const InputOptions& options, std::vector
 }
 
 bool is_cad_input(const std::string& path) { return has_cad_extension(path); }
+
+bool has_cad_faces(const std::string& path) { return has_cad_extension(path) && lower_extension(path) != "scad"; }
 
 CadFitReport fit_to_cad_input(const std::string& path, const InputOptions& options, const CadFitOptions& fit_options,
                               TetMesh& mesh) {

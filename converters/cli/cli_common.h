@@ -43,6 +43,8 @@ Plc load_input(const std::string& path, const InputOptions& options, std::vector
 
 // True for the inputs load_input reads through the CAD front end (.step .stp .iges .igs .brep .brp .fcstd .scad).
 bool is_cad_input(const std::string& path);
+// A CAD input with CAD faces to measure against: is_cad_input, less OpenSCAD's rendered surfaces (.scad).
+bool has_cad_faces(const std::string& path);
 
 // fit_mesh_to_cad (cad_import.h) for a mesh of the CAD input at `path`, read with `options`, through the plugin.
 // Throws InputError like load_input (Unsupported when built without the CAD front end).

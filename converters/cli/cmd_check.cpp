@@ -58,8 +58,7 @@ std::string judge_against_cad(const CheckArgs& args, const TetMesh& mesh, CheckR
 
 int run_check(const CheckArgs& args) {
   const TetMesh mesh = read_tet_mesh(args.mesh);
-  const bool cad_reference = !args.reference.empty() && is_cad_input(args.reference) &&
-                             args.reference.size() > 5 && args.reference.substr(args.reference.size() - 5) != ".scad";
+  const bool cad_reference = !args.reference.empty() && has_cad_faces(args.reference);
   std::optional<Plc> reference;
   if (!args.reference.empty() && !cad_reference) reference = load_input(args.reference, args.input_options);
   CheckOptions options;

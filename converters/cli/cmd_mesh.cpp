@@ -37,7 +37,7 @@ struct MeshArgs {
 // After meshing: CAD inputs get their boundary nodes (and mid nodes) onto the CAD faces and edges
 // (fit_mesh_to_cad); other inputs are made second order when asked. Prints one summary line.
 void finish_mesh(const MeshArgs& args, TetMesh& mesh) {
-  const bool cad = is_cad_input(args.input);
+  const bool cad = has_cad_faces(args.input);
   if (!cad) {
     if (args.order == 2) make_second_order(mesh);
     return;

@@ -45,18 +45,6 @@ double element_measure(const TetMesh& mesh, std::size_t t) {
   return mesh.is_second_order() ? tet10_jacobian(mesh, t).ratio() : signed_volume6(mesh, t);
 }
 
-// Corners within rounding of a plane: |6V| <= 1e-12 L^3, L the longest edge.
-bool is_flat(const TetMesh& mesh, std::size_t t) {
-  double sq_longest = 0;
-  for (const auto& e : kTetEdges) {
-    const Point3& a = mesh.points[mesh.tets[t][e[0]]];
-    const Point3& b = mesh.points[mesh.tets[t][e[1]]];
-    sq_longest = std::max(sq_longest, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                                          (a[2] - b[2]) * (a[2] - b[2]));
-  }
-  return std::fabs(signed_volume6(mesh, t)) <= 1e-12 * sq_longest * std::sqrt(sq_longest);
-}
-
 }  // namespace
 
 void make_second_order(TetMesh& mesh) {
@@ -89,11 +77,14 @@ void make_second_order(TetMesh& mesh) {
   for (std::size_t e = 0; e < mesh.edges.size(); ++e) mesh.edge_mid[e] = existing(mesh.edges[e][0], mesh.edges[e][1], "CAD");
 }
 
-Tet10Jacobian tet10_jacobian(const TetMesh& mesh, std::size_t t) {
-  const auto& v = mesh.tets[t];
-  const auto& m = mesh.tet_mid[t];
-  const auto corner = [&](int i) -> const Point3& { return mesh.points[v[i]]; };
-  const auto mid = [&](int i, int j) -> const Point3& { return mesh.points[m[mid_slot(i, j)]]; };
+namespace {
+
+// The Jacobian determinant at the ten nodes of the element with these corners and mid nodes (tet_mid order),
+// all given relative to corner 0 (far from the origin, the sums below would otherwise cancel digits that a small or
+// nearly flat element needs).
+Tet10Jacobian jacobian_of(const Point3 (&corners)[4], const Point3 (&mids)[6]) {
+  const auto corner = [&](int i) -> const Point3& { return corners[i]; };
+  const auto mid = [&](int i, int j) -> const Point3& { return mids[mid_slot(i, j)]; };
   // Evaluation points: the corners, then the edge midpoints.
   double L[10][4] = {};
   for (int i = 0; i < 4; ++i) L[i][i] = 1;
@@ -123,6 +114,43 @@ Tet10Jacobian tet10_jacobian(const TetMesh& mesh, std::size_t t) {
     result.max_det = std::max(result.max_det, det);
   }
   return result;
+}
+
+// Element t's nodes relative to its corner 0; `straight`: mid nodes at the (rounded) midpoints of the corners.
+void local_nodes(const TetMesh& mesh, std::size_t t, bool straight, Point3 (&corners)[4], Point3 (&mids)[6]) {
+  const auto& v = mesh.tets[t];
+  const Point3& origin = mesh.points[v[0]];
+  const auto local = [&](const Point3& p) { return Point3{p[0] - origin[0], p[1] - origin[1], p[2] - origin[2]}; };
+  for (int i = 0; i < 4; ++i) corners[i] = local(mesh.points[v[i]]);
+  for (int k = 0; k < 6; ++k)
+    mids[k] = local(straight ? midpoint(mesh.points[v[kTetEdges[k][0]]], mesh.points[v[kTetEdges[k][1]]])
+                             : mesh.points[mesh.tet_mid[t][k]]);
+}
+
+// Element t cannot be judged by its Jacobian ratio: its corners are (nearly) in a plane, |6V| <= 1e-6 L^3 (L the
+// longest edge; a dihedral angle of about 1e-4 degrees), or it is so small against its distance from the origin
+// that even its straight version (mid nodes at the rounded midpoints) has a Jacobian ratio below 1/2.
+bool is_flat(const TetMesh& mesh, std::size_t t) {
+  double sq_longest = 0;
+  for (const auto& e : kTetEdges) {
+    const Point3& a = mesh.points[mesh.tets[t][e[0]]];
+    const Point3& b = mesh.points[mesh.tets[t][e[1]]];
+    sq_longest = std::max(sq_longest, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                          (a[2] - b[2]) * (a[2] - b[2]));
+  }
+  if (std::fabs(signed_volume6(mesh, t)) <= 1e-6 * sq_longest * std::sqrt(sq_longest)) return true;
+  if (!mesh.is_second_order()) return false;
+  Point3 corners[4], mids[6];
+  local_nodes(mesh, t, /*straight=*/true, corners, mids);
+  return jacobian_of(corners, mids).ratio() < 0.5;
+}
+
+}  // namespace
+
+Tet10Jacobian tet10_jacobian(const TetMesh& mesh, std::size_t t) {
+  Point3 corners[4], mids[6];
+  local_nodes(mesh, t, /*straight=*/false, corners, mids);
+  return jacobian_of(corners, mids);
 }
 
 NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& moves, const NodeMoveOptions& options) {

@@ -59,8 +59,9 @@ struct NodeMoveReport {
   std::size_t num_dragged = 0;    // full moves made by also moving interior nodes (NodeMoveOptions::drag_interior)
   double max_distance_left = 0;   // largest distance between a node and its target after the moves, model units
   std::size_t num_bad_elements = 0;  // elements unacceptable after all moves, not counting the flat ones below
-  // Elements whose corners are flat (|6V| <= 1e-12 of the longest edge cubed): no move made them so (a move never
-  // makes an element worse than acceptable), the straight mesh had them; their Jacobian ratio means nothing.
+  // Elements that cannot be judged by their Jacobian ratio: corners (nearly) flat, |6V| <= 1e-6 of the longest edge
+  // cubed, or so small against their distance from the origin that their straight version fails the ratio by
+  // rounding. No move made them so (a move never makes an element worse than acceptable): the straight mesh had them.
   std::size_t num_flat_elements = 0;
   double min_jacobian_ratio = 1;  // over the second-order elements that are not flat (1 for a linear mesh)
 };
