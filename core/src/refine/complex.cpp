@@ -137,16 +137,17 @@ double InputComplex::segment_facet_angle_deg(Index v, Index segment, Index facet
   const double h = dot(d, n);
   const Point3 proj{d[0] - h * n[0], d[1] - h * n[1], d[2] - h * n[2]};
   double best = 180;
-  for (const auto& loop : plc->facets[facet].polygons) {
-    if (loop.size() < 3) continue;
-    for (std::size_t k = 0; k < loop.size(); ++k) {
-      if (loop[k] != v) continue;
-      const Point3 p = sub(plc->vertices[loop[(k + loop.size() - 1) % loop.size()]], plc->vertices[v]);
-      const Point3 q = sub(plc->vertices[loop[(k + 1) % loop.size()]], plc->vertices[v]);
-      const bool inside = facet_covers_ray(facet, plc->vertices[v], proj, v, kNoIndex);
-      const double angle = inside ? std::abs(90.0 - angle_deg(d, n)) : std::min(angle_deg(d, p), angle_deg(d, q));
-      best = std::min(best, angle);
-    }
+  // The corners of the facet at v (in loop order), and whether the facet covers the ray: the same for each corner.
+  const auto [first, last] = corners_at(facet, v);
+  const int known = first == last || scan_rays ? 0 : indexed_corner_covers(facet, v, proj);
+  const bool inside = known != 0 ? known > 0 : first != last && facet_covers_ray(facet, plc->vertices[v], proj, v, kNoIndex);
+  for (auto corner = first; corner != last; ++corner) {
+    const auto& loop = plc->facets[facet].polygons[(*corner)[1]];
+    const std::size_t k = (*corner)[2];
+    const Point3 p = sub(plc->vertices[loop[(k + loop.size() - 1) % loop.size()]], plc->vertices[v]);
+    const Point3 q = sub(plc->vertices[loop[(k + 1) % loop.size()]], plc->vertices[v]);
+    const double angle = inside ? std::abs(90.0 - angle_deg(d, n)) : std::min(angle_deg(d, p), angle_deg(d, q));
+    best = std::min(best, angle);
   }
   return best;
 }
@@ -197,8 +198,10 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
           acute = true;
     }
   } else {  // two facets
-    const auto& fa = facet_vertices[a.id];
-    const auto& fb = facet_vertices[b.id];
+    // The common vertices in increasing order, walking the smaller of the two sorted sets.
+    const bool a_smaller = facet_vertices[a.id].size() <= facet_vertices[b.id].size();
+    const auto& fa = facet_vertices[a_smaller ? a.id : b.id];
+    const auto& fb = facet_vertices[a_smaller ? b.id : a.id];
     for (Index v : fa) {
       if (acute) break;
       if (!std::binary_search(fb.begin(), fb.end(), v)) continue;
@@ -247,6 +250,14 @@ bool InputComplex::facet_covers_ray(Index facet, const Point3& origin, const Poi
 }
 
 std::vector<Point3> InputComplex::inward_directions(Index facet, Index segment) const {
+  const int side = scan_rays ? 0 : indexed_edge_side(facet, segment);
+  if (side == 0) return scan_inward_directions(facet, segment);
+  const Segment& seg = segments[segment];
+  const Point3 d = normalized(cross(frames[facet].normal, sub(plc->vertices[seg.b], plc->vertices[seg.a])));
+  return {side > 0 ? d : Point3{-d[0], -d[1], -d[2]}};
+}
+
+std::vector<Point3> InputComplex::scan_inward_directions(Index facet, Index segment) const {
   const Segment& seg = segments[segment];
   const Point3& a = plc->vertices[seg.a];
   const Point3& b = plc->vertices[seg.b];
@@ -267,9 +278,10 @@ bool InputComplex::facets_acute_along(Index segment, Index f, Index g) const {
   return false;
 }
 
-InputComplex build_input_complex(const Plc& plc) {
+InputComplex build_input_complex(const Plc& plc, bool scan_rays) {
   InputComplex c;
   c.plc = &plc;
+  c.scan_rays = scan_rays;
   c.segments = collect_segments(plc);
   const std::size_t nv = plc.vertices.size();
   c.vertex_segments.resize(nv);
@@ -342,6 +354,8 @@ InputComplex build_input_complex(const Plc& plc) {
   }
   for (auto& list : c.segment_facets)
     std::sort(list.begin(), list.end(), [](const SegmentInFacet& x, const SegmentInFacet& y) { return x.facet < y.facet; });
+  c.facet_index.resize(plc.facets.size());
+  for (Index f = 0; f < plc.facets.size(); ++f) c.build_facet_index(f);
 
   compute_plane_groups(plc, c);
 

@@ -89,9 +89,32 @@ struct InputComplex {
   // Dihedral angle below 90 degrees between facets f and g along their common segment s, on some pair of sides.
   bool facets_acute_along(Index segment, Index f, Index g) const;
   mutable std::unordered_map<std::uint64_t, bool> acute_pair_cache;
+
+  // Ray queries at a facet's own corners and edges in O(log n) instead of a scan of its n edges (issue 18 item 6:
+  // an 8000-gon took 39 s; complex_rays.cpp). For polygons that do not cross, the parity that facet_covers_ray counts
+  // equals which side of the one edge or corner at the origin the ray leaves by; each closed polygon's interior side
+  // is found once by a scan from its longest edge. Where that is not decisive (an edge or corner used twice, a
+  // direction within 1e-9 rad of an edge, a polygon whose side the scan cannot tell) the scan answers, as before.
+  struct FacetIndex {
+    std::vector<std::array<Index, 3>> corners;                       // (vertex, loop, position), sorted
+    std::vector<std::pair<std::uint64_t, std::array<Index, 2>>> edges;  // (key(a, b), {loop, position}), sorted
+    std::vector<std::int8_t> loop_side;  // +1: interior on the cross(normal, edge) side, -1: the other, 0: unknown
+  };
+  std::vector<FacetIndex> facet_index;  // per facet (complex_rays.cpp)
+  bool scan_rays = false;               // tests: answer every query by the scan, the reference the index must match
+  void build_facet_index(Index facet);
+  // The side of facet f next to its polygon edge s that f covers: +1 the cross(normal, b - a) side (a < b the
+  // segment's vertices), -1 the other, 0 not known from the index.
+  int indexed_edge_side(Index facet, Index segment) const;
+  // Whether f covers the points just beyond its corner v in the in-plane direction dir: +1 yes, -1 no, 0 not known.
+  int indexed_corner_covers(Index facet, Index v, const Point3& dir) const;
+  // The corners of f at v, as (vertex, loop, position) entries of facet_index[f].corners.
+  std::pair<const std::array<Index, 3>*, const std::array<Index, 3>*> corners_at(Index facet, Index v) const;
+  std::vector<Point3> scan_inward_directions(Index facet, Index segment) const;  // by facet_covers_ray
 };
 
 // Builds the complex. Throws InputError for a facet whose vertices span no plane.
-InputComplex build_input_complex(const Plc& plc);
+// scan_rays: answer every ray query by the scan (tests compare it with the index; same results, O(n^2) per facet).
+InputComplex build_input_complex(const Plc& plc, bool scan_rays = false);
 
 }  // namespace qualmesh::detail
