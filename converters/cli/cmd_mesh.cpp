@@ -14,6 +14,7 @@
 
 #include "cli_common.h"
 #include "mesh_checks.h"
+#include "mesh_limits.h"
 #include "qualmesh/error.h"
 #include "qualmesh/mesh_io.h"
 #include "qualmesh/mesher.h"
@@ -32,6 +33,7 @@ struct MeshArgs {
   bool no_pump = false;
   bool no_sliver_insertion = false;
   int order = 1;  // 1: 4-node tetrahedra, 2: 10-node (second_order.h)
+  MeshLimits limits;  // --time-limit, --max-memory, --allow-partial (mesh_limits.h)
 };
 
 // After meshing: CAD inputs get their boundary nodes (and mid nodes) onto the CAD faces and edges
@@ -63,6 +65,8 @@ int run_mesh(MeshArgs& args) {
   if (args.no_sliver_insertion) args.options.sliver_insertion = false;
   const Plc plc = load_input(args.input, args.input_options);
   if (!check_mesh_input(plc, args.input, args.options, args.verbose)) return kExitBadInput;  // as `info` validates
+  if (!check_size_estimate(plc, args.input, args.options, args.limits)) return kExitResource;  // mesh_limits.h
+  args.options.cancel = make_cancel(args.limits);
   const bool tty = isatty(fileno(stderr)) != 0;
   ProgressCallback progress;
   if (tty) {
@@ -77,7 +81,17 @@ int run_mesh(MeshArgs& args) {
   }
   LogCallback log;
   if (args.verbose) log = [](const std::string& line) { std::cerr << "qualmesh: " << line << "\n"; };
-  MeshResult result = mesh_plc(plc, args.options, progress, log);
+  MeshResult result;
+  try {
+    result = mesh_plc(plc, args.options, progress, log);
+  } catch (const MeshCancelled&) {
+    if (tty) std::fprintf(stderr, "\r%70s\r", "");
+    std::cerr << "qualmesh: " << args.input << ": error[resource]: " << *args.limits.stopped_by
+              << " stopped meshing before the input vertices were triangulated: nothing written\n";
+    return kExitResource;
+  }
+  const bool stopped = report_limit_stop(args.input, args.options, args.limits, result);  // exit 4 below
+  if (stopped && !args.limits.allow_partial) return kExitResource;
   if (tty) std::fprintf(stderr, "\r%70s\r", "");
   if (!check_mesh_result(plc, args.input, args.options, result)) return kExitBadInput;  // no tetrahedron
   finish_mesh(args, result.mesh);
@@ -121,7 +135,7 @@ int run_mesh(MeshArgs& args) {
   if (result.status == MeshStatus::VertexLimitReached)
     std::printf("status:      stopped at the vertex limit (%zu)\n", args.options.max_vertices);
   std::fflush(stdout);
-  return kExitOk;
+  return stopped ? kExitResource : kExitOk;
 }
 
 }  // namespace
@@ -160,6 +174,7 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
                       "Element order: 1 (4-node tetrahedra, default) or 2 (10-node; mid nodes on curved CAD faces)")
       ->check(CLI::IsMember({1, 2}));
   command->add_flag("-v,--verbose", args->verbose, "Log the stages on stderr");
+  add_limit_options(*command, args->limits);  // --time-limit, --max-memory, --allow-partial (mesh_limits.h)
   add_mesh_option_checks(*command);  // ranges and the output format, at parse time (mesh_checks.h)
   command->callback([args, &exit_code] { exit_code = run_mesh(*args); });
 }

@@ -5,13 +5,15 @@
 #include <iostream>
 
 #include "cli_common.h"
+#include "mesh_limits.h"
 #include "qualmesh/error.h"
 
 int main(int argc, char** argv) {
   using namespace qualmesh::cli;
   CLI::App app{
       "QualMesh: quality tetrahedral meshing by weighted Delaunay refinement (Cheng & Dey).\n"
-      "Exit codes: 0 ok, 1 internal error, 2 bad input or usage, 3 `check` found defects."};
+      "Exit codes: 0 ok, 1 internal error, 2 bad input or usage, 3 `check` found defects, 4 a resource limit "
+      "(time, memory, vertices) stopped the run."};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("qualmesh 0.1.0"));
 
@@ -32,8 +34,10 @@ int main(int argc, char** argv) {
     std::cerr << "qualmesh: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
-    std::cerr << "qualmesh: internal error: out of memory\n";
-    return kExitInternal;
+    // A resource limit, not a bug (issue 18): the machine or the address-space limit ran out.
+    std::cerr << "qualmesh: error[resource]: out of memory (lower the size field, or raise the memory limit): "
+                 "nothing written\n";
+    return kExitResource;
   } catch (const std::exception& e) {
     std::cerr << "qualmesh: internal error: " << e.what() << "\n";
     return kExitInternal;

@@ -137,6 +137,9 @@ void add_mesh_option_checks(CLI::App& command) {
   add_check(command, "--delta", real_in(kDelta));
   add_check(command, "--deflection", real_in(kDeflection));
   add_check(command, "--relative-deflection", real_in(kRelativeDeflection));
+  // Resource limits (mesh_limits.h): seconds > 0, a memory budget of at least 16 MB.
+  add_check(command, "--time-limit", real_in({0, true, kInf, false, "seconds; leave the option out for no limit"}));
+  add_check(command, "--max-memory", real_in({16, false, kInf, false, "MB; default 80% of the RAM"}));
   add_check(command, "--output", CLI::Validator([](std::string& text) { return output_path_problem(text); }, ""));
 }
 

@@ -19,6 +19,7 @@ Categories (issue 18, "What hostile input does today"):
   read-*     malformed files (tests/data/malformed), refused by the readers with their file, line and message
   ok-*       what works and must keep working (exit 0, a mesh written, nothing on stderr)
   far-*      5. models far from the origin: `check` and `mesh` work as at the origin
+  limit-*    3. resource limits: exit 4, the limit named, nothing written unless --allow-partial (tag "writes")
 """
 import re
 from dataclasses import dataclass, field
@@ -240,5 +241,40 @@ for name in ["1e9", "1e15", "minus_1e15"]:
     case(f"far-check-cube-{name}", ["check", f"{{in}}/cube_mesh_{name}.node", "--ref", f"{{in}}/cube_offset_{name}.off"],
          0, r"^$")
     case(f"far-mesh-cube-{name}", ["mesh", f"{{in}}/cube_offset_{name}.off", "-o", "{out}"], 0, r"^$")
+# ---------------------------------------------------------------------------------------------------------------
+# limit-*: resource limits (issue 18 item 3), exit 4 and nothing written unless --allow-partial.
+RESOURCE = r"error\[resource\]: "
+case("limit-max-edge-1e-4-refused-at-once", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-edge", "1e-4"], 4,
+     RESOURCE + r"the size field asks for about 3\.3e\+13 tets \(about 5\.5e\+12 vertices\), about 7\.7e\+06 GB needed, "
+     r"over the memory budget of [0-9.e+]+ GB \(--max-memory, default 80% of the RAM\): nothing meshed, nothing written",
+     timeout=5)
+case("limit-max-volume-refused", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-volume", "1e-12"], 4,
+     RESOURCE + r"the size field asks for about 2e\+12 tets", timeout=5)
+case("limit-max-memory-estimate", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-edge", "0.01", "--max-memory", "1000"],
+     4, RESOURCE + r"the size field asks for about 3\.3e\+07 tets .*about 7\.7 GB needed, over the memory budget of 0\.98 GB", timeout=5)
+case("limit-time", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-edge", "0.02", "--time-limit", "0.2"], 4,
+     RESOURCE + r"the time limit \(--time-limit 0\.2 s\) stopped meshing at \d+ vertices, \d+ tets: nothing written "
+     r"\(--allow-partial writes the partial mesh\)", timeout=10)
+case("limit-time-initial-stage", ["mesh", "{in}/prism_2000.off", "-o", "{out}", "--time-limit", "0.2"], 4,
+     RESOURCE + r"the time limit \(--time-limit 0\.2 s\) stopped meshing before the input vertices were triangulated: "
+     r"nothing written", timeout=10)
+case("limit-max-vertices", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-edge", "0.05", "--max-vertices", "100"], 4,
+     RESOURCE + r"the vertex limit \(--max-vertices 100\) stopped meshing at 100 vertices, \d+ tets: nothing written")
+case("limit-max-vertices-allow-partial", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-edge", "0.05", "--max-vertices",
+                                          "100", "--allow-partial"], 4,
+     RESOURCE + r"the vertex limit \(--max-vertices 100\) stopped meshing at 100 vertices, \d+ tets: the partial mesh "
+     r"is written \(--allow-partial\)", tags=["writes"])
+case("limit-time-allow-partial", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-edge", "0.02", "--time-limit", "0.2",
+                                  "--allow-partial"], 4, RESOURCE + r"the time limit .*the partial mesh is written",
+     tags=["writes"], timeout=10)
+for option, range_text, values in [("--time-limit", r"> 0 \(seconds; leave the option out for no limit\)",
+                                    ["0", "-1", "-0"]),
+                                   ("--max-memory", r">= 16 \(MB; default 80% of the RAM\)", ["0", "1", "15.9", "-5"])]:
+    for value, kind in [(v, OUT_OF_RANGE) for v in values] + [("nan", NAN), ("inf", NOT_FINITE), ("abc", NOT_A_NUMBER)]:
+        case(f"limit-opt{option}-{_slug(value)}", ["mesh", BOX, "-o", "{out}", f"{option}={value}"], 2,
+             rf"^{option}: '{re.escape(value)}' {kind}: expected a finite number" +
+             (" " + range_text if kind == OUT_OF_RANGE else ""))
+case("ok-limits-generous", ["mesh", BOX, "-o", "{out}", "--time-limit", "60", "--max-memory", "2000"], 0, r"^$")
+
 case("far-check-cube-1e9-vertex-off", ["check", "{in}/cube_mesh_1e9_bent.node", "--ref", "{in}/cube_offset_1e9.off"],
      3, r"")

@@ -157,6 +157,19 @@ _off_by[6] = (_off_by[6][0], _off_by[6][1], _off_by[6][2] + 1e-5)
 INPUTS["cube_mesh_1e9_bent.node"], INPUTS["cube_mesh_1e9_bent.ele"] = tetgen_mesh(_off_by, _kuhn_tets())
 
 
+def _prism(n):
+    """A prism over a regular n-gon: all its vertices on one sphere, so the initial Delaunay triangulation is slow."""
+    import math
+    ring = [(math.cos(2 * math.pi * i / n), math.sin(2 * math.pi * i / n)) for i in range(n)]
+    vertices = [(x, y, z) for z in (0.0, 1.0) for x, y in ring]
+    faces = [tuple(reversed(range(n))), tuple(range(n, 2 * n))]
+    faces += [(i, (i + 1) % n, n + (i + 1) % n, n + i) for i in range(n)]
+    return off(vertices, faces)
+
+
+INPUTS["prism_2000.off"] = _prism(2000)
+
+
 def write_inputs(folder):
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 #include <cstdint>
@@ -66,6 +67,11 @@ struct MeshOptions {
   // angles, when one keeps the boundary, rho0 and the weight caps and improves its neighbourhood; the new stars are
   // pumped again. Adds at most 4.8% of plain refinement's vertex count. false: pumping alone (for comparison).
   bool sliver_insertion = true;
+
+  // Cancellation (issue 18, for --time-limit, a memory budget and the FreeCAD task panel): when set, polled every
+  // 64 vertex insertions and in the pumping passes; once it returns true, meshing stops as at the vertex limit
+  // (MeshStatus::Cancelled) and mesh_plc() returns the mesh as it stands. Empty: never polled, no cost.
+  std::function<bool()> cancel;
 };
 
 enum class MeshStage { Initial, Boundary, Refinement, Regions, Pumping, Extraction };
@@ -140,6 +146,7 @@ enum class MeshStatus {
   Ok,
   VertexLimitReached,  // MeshOptions::max_vertices stopped refinement; the mesh is conforming only if the
                        // boundary stage had finished
+  Cancelled,           // MeshOptions::cancel returned true; the same partial mesh as at the vertex limit
 };
 
 struct MeshResult {
@@ -153,6 +160,11 @@ struct MeshResult {
   // facets incident to it. Rule 3 does not split these (the short edge is forced by the input).
   std::vector<std::uint8_t> tet_touches_acute_angle;
   MeshStats stats;
+};
+
+// Thrown by mesh_plc() when MeshOptions::cancel stops it before the input vertices are triangulated (no partial mesh).
+struct MeshCancelled : std::runtime_error {
+  MeshCancelled() : std::runtime_error("meshing cancelled before the input vertices were triangulated") {}
 };
 
 // Meshes the volume bounded by `plc` (regions separated by internal facets; hole seeds remove regions; the outside

@@ -123,7 +123,10 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
   } else {
     detail::compute_regions(s);
   }
-  if (s.vertex_limit_reached) {
+  if (s.cancelled) {
+    result.status = MeshStatus::Cancelled;
+    s.log_line("stopped: cancelled");
+  } else if (s.vertex_limit_reached) {
     result.status = MeshStatus::VertexLimitReached;
     s.log_line("stopped: vertex limit " + std::to_string(options.max_vertices) + " reached");
   }

@@ -842,6 +842,7 @@ void pump_slivers(MeshState& s) {
     std::size_t moves = 0;
     touched.clear();
     for (const Bad& b : bad) {
+      if (s.poll_cancel()) break;
       Ch3 c;
       const auto& ids = b.ids;
       if (!current_cell(s, ids, c)) continue;  // already gone
@@ -883,6 +884,7 @@ void pump_slivers(MeshState& s) {
   for (int pass = 0; pass < kMaxNeighbourPasses && !bad.empty(); ++pass) {
     std::size_t moves = 0;
     for (const Bad& b : bad) {
+      if (s.poll_cancel()) break;
       Ch3 c;
       const auto& ids = b.ids;
       if (!current_cell(s, ids, c)) continue;  // already gone

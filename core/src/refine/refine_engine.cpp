@@ -382,6 +382,7 @@ void insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& c
   if (region < 0 && s.regions_known)
     for (const HoleFace& o : outer) o.new_cell()->info().guess = o.region;
   if (s.tr.number_of_vertices() >= s.options.max_vertices) s.vertex_limit_reached = true;
+  s.poll_cancel();
 
   VertexRecord& r = s.vertices[id];
   std::vector<std::array<Index, 3>> new_faces;
@@ -869,6 +870,7 @@ void insert_input_vertices(MeshState& s) {
     vh->info() = id;
     s.vertices[id].handle = vh;
     hint = vh;
+    if (s.poll_cancel()) throw MeshCancelled();  // no triangulation to stop with yet
   }
   if (s.tr.dimension() < 3)
     throw InputError(ErrorCode::Empty, "the input vertices span no volume", plc.name);

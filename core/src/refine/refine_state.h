@@ -123,7 +123,16 @@ struct MeshState {
   ProgressCallback progress;
   LogCallback log;
   MeshStage stage = MeshStage::Initial;
-  bool vertex_limit_reached = false;
+  bool vertex_limit_reached = false;  // also set on cancellation: every stage stops as at the vertex limit
+  bool cancelled = false;             // MeshOptions::cancel returned true
+  std::size_t cancel_polls = 0;
+
+  // Polls MeshOptions::cancel every 64 calls; true (and vertex_limit_reached) once it has said stop.
+  bool poll_cancel() {
+    if (cancelled || !options.cancel || (++cancel_polls & 63) != 0) return cancelled;
+    if (options.cancel()) cancelled = vertex_limit_reached = true;
+    return cancelled;
+  }
 
   void log_line(const std::string& line) const {
     if (log) log(line);
