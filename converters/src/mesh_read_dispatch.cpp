@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "file_read.h"
 #include "mesh_io_internal.h"
 #include "qualmesh/mesh_io.h"
 
@@ -27,14 +28,8 @@ TetMesh read_tet_mesh(const std::string& path) {
 
 namespace io {
 
-std::string read_whole_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(ErrorCode::Io, "cannot open file", path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(ErrorCode::Io, "read failed", path);
-  return text.str();
-}
+// Regular files only, at most their size (file_read.h: FIFOs, directories, /dev/zero refused).
+std::string read_whole_file(const std::string& path) { return io_detail::read_regular_file(path); }
 
 void check_mesh_indices(const TetMesh& mesh, const std::string& file) {
   const Index n = static_cast<Index>(mesh.points.size());

@@ -1,6 +1,8 @@
 // Tokenizer with line numbers for the text PLC readers. See text_scanner.h.
 #include "text_scanner.h"
 
+#include "file_read.h"
+
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -11,14 +13,8 @@
 
 namespace qualmesh::plc_io {
 
-std::string read_whole_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(ErrorCode::Io, std::string("cannot open file: ") + std::strerror(errno), path);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(ErrorCode::Io, "read failed", path);
-  return std::move(buffer).str();
-}
+// Regular files only, at most their size (file_read.h: FIFOs, directories, /dev/zero refused).
+std::string read_whole_file(const std::string& path) { return io_detail::read_regular_file(path); }
 
 TextScanner::TextScanner(std::string text, std::string path, bool hash_comments)
     : text_(std::move(text)), path_(std::move(path)), hash_comments_(hash_comments) {}

@@ -274,6 +274,18 @@ for option, range_text, values in [("--time-limit", r"> 0 \(seconds; leave the o
         case(f"limit-opt{option}-{_slug(value)}", ["mesh", BOX, "-o", "{out}", f"{option}={value}"], 2,
              rf"^{option}: '{re.escape(value)}' {kind}: expected a finite number" +
              (" " + range_text if kind == OUT_OF_RANGE else ""))
+# Inputs that are not regular files (created in the output folder by the runner's tags): refused at once by name.
+NOT_REGULAR = [("fifo", "in.off", "mkfifo:in.off", r"is a FIFO \(named pipe\), not a regular file"),
+               ("dev-zero-symlink", "zero.off", "symlink:zero.off=/dev/zero",
+                r"is a character device \(such as /dev/zero\), not a regular file \(a symbolic link to /dev/zero\)"),
+               ("directory", "dir.off", "mkdir:dir.off", r"is a directory, not a file")]
+for name, file, tag, pattern in NOT_REGULAR:
+    for command in (["mesh", "{outdir}/" + file, "-o", "{out}"], ["info", "{outdir}/" + file]):
+        case(f"limit-input-{name}-{command[0]}", command, 2, re.escape(file) + r": error\[io\]: " + pattern,
+             tags=[tag], timeout=5)
+    mesh_file = file.replace(".off", ".vtu")
+    case(f"limit-input-{name}-check", ["check", "{outdir}/" + mesh_file], 2,
+         re.escape(mesh_file) + r": error\[io\]: " + pattern, tags=[tag.replace(".off", ".vtu")], timeout=5)
 case("ok-limits-generous", ["mesh", BOX, "-o", "{out}", "--time-limit", "60", "--max-memory", "2000"], 0, r"^$")
 
 case("far-check-cube-1e9-vertex-off", ["check", "{in}/cube_mesh_1e9_bent.node", "--ref", "{in}/cube_offset_1e9.off"],

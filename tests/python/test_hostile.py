@@ -67,6 +67,11 @@ def test_hostile(case, qualmesh_exe, input_dir, limit_memory, tmp_path):
     for tag in case.tags:
         if tag.startswith("mkdir:"):
             (outdir / tag[len("mkdir:"):]).mkdir()
+        elif tag.startswith("mkfifo:"):  # a FIFO nobody writes to: reading it must not block
+            os.mkfifo(outdir / tag[len("mkfifo:"):])
+        elif tag.startswith("symlink:"):  # symlink:NAME=TARGET
+            name, target = tag[len("symlink:"):].split("=", 1)
+            (outdir / name).symlink_to(target)
     before = sorted(p.name for p in outdir.iterdir())
     argv = [qualmesh_exe] + [_expand(a, input_dir, outdir) for a in case.argv]
     try:
