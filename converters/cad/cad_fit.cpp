@@ -197,14 +197,16 @@ CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options,
           targets(projector, mesh, on_edge, on_face, 0, report.num_fixed_vertices, &report.max_offset_before);
       report.num_corner_targets = moves.size();
       report.corners = move_nodes_checked(mesh, moves, fit_options.moves);
+      report.num_flat_caps_removed = remove_flat_boundary_tets(mesh);
     }
     if (!fit_options.second_order) return report;
     const Index first_mid = static_cast<Index>(mesh.points.size());
     make_second_order(mesh);
+    const std::vector<int> mid_labels = face_labels(mesh);  // the faces changed: flat caps were removed
     std::vector<int> on_edge(mesh.points.size(), kNone), on_face(mesh.points.size(), kNone);
     for (std::size_t e = 0; e < mesh.edges.size(); ++e) note(on_edge, mesh.edge_mid[e], mesh.edge_marker[e]);
     for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-      for (Index v : mesh.face_mid[f]) note(on_face, v, labels[f]);
+      for (Index v : mesh.face_mid[f]) note(on_face, v, mid_labels[f]);
     std::size_t unused = 0;
     const std::vector<NodeMove> moves = targets(projector, mesh, on_edge, on_face, first_mid, unused, nullptr);
     report.num_mid_targets = moves.size();

@@ -48,9 +48,10 @@ void finish_mesh(const MeshArgs& args, TetMesh& mesh) {
   fit.second_order = args.order == 2;
   const CadFitReport r = fit_to_cad_input(args.input, args.input_options, fit, mesh);
   std::printf("cad fit:     %zu boundary nodes onto their CAD faces/edges (max offset %.3g): %zu in full (%zu moving "
-              "interior nodes too), %zu part way, %zu not moved (an element would invert)\n",
+              "interior nodes too), %zu part way, %zu not moved (an element would invert); %zu flat tetrahedra "
+              "against the boundary removed\n",
               r.num_corner_targets, r.max_offset_before, r.corners.num_full, r.corners.num_dragged,
-              r.corners.num_partial, r.corners.num_refused);
+              r.corners.num_partial, r.corners.num_refused, r.num_flat_caps_removed);
   if (fit.second_order)
     std::printf("curving:     %zu mid nodes onto their CAD faces/edges: %zu in full (%zu moving interior nodes too), "
                 "%zu relaxed toward straight, %zu left straight; min Jacobian ratio %.3g, %zu elements below %.2g; %zu "
@@ -99,7 +100,7 @@ int run_mesh(MeshArgs& args) {
   const MeshStats& st = result.stats;
   std::printf("input:       %zu vertices, %zu facets\n", plc.vertices.size(), plc.facets.size());
   std::printf("output:      %zu vertices (%zu Steiner), %zu tetrahedra, %zu boundary faces\n",
-              result.mesh.points.size(), st.num_steiner_vertices, st.num_tets, st.num_boundary_faces);
+              result.mesh.points.size(), st.num_steiner_vertices, result.mesh.tets.size(), result.mesh.faces.size());
   if (st.encroaching_fell_back)
     std::printf("encroaching: steiner mode gave up (-v says why); meshed again with the paper's rule\n");
   std::printf("insertions:  rule 1 %zu, rule 2 %zu, rule 3 %zu; %zu centres rejected; %zu small-angle skips\n",

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -127,10 +128,8 @@ void local_nodes(const TetMesh& mesh, std::size_t t, bool straight, Point3 (&cor
                              : mesh.points[mesh.tet_mid[t][k]]);
 }
 
-// Element t cannot be judged by its Jacobian ratio: its corners are (nearly) in a plane, |6V| <= 1e-6 L^3 (L the
-// longest edge; a dihedral angle of about 1e-4 degrees), or it is so small against its distance from the origin
-// that even its straight version (mid nodes at the rounded midpoints) has a Jacobian ratio below 1/2.
-bool is_flat(const TetMesh& mesh, std::size_t t) {
+// |6V| <= flat L^3, L the longest edge of tet t.
+bool is_flat_corners(const TetMesh& mesh, std::size_t t, double flat) {
   double sq_longest = 0;
   for (const auto& e : kTetEdges) {
     const Point3& a = mesh.points[mesh.tets[t][e[0]]];
@@ -138,7 +137,14 @@ bool is_flat(const TetMesh& mesh, std::size_t t) {
     sq_longest = std::max(sq_longest, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                                           (a[2] - b[2]) * (a[2] - b[2]));
   }
-  if (std::fabs(signed_volume6(mesh, t)) <= 1e-6 * sq_longest * std::sqrt(sq_longest)) return true;
+  return std::fabs(signed_volume6(mesh, t)) <= flat * sq_longest * std::sqrt(sq_longest);
+}
+
+// Element t cannot be judged by its Jacobian ratio: its corners are (nearly) in a plane, |6V| <= 1e-6 L^3 (L the
+// longest edge; a dihedral angle of about 1e-4 degrees), or it is so small against its distance from the origin
+// that even its straight version (mid nodes at the rounded midpoints) has a Jacobian ratio below 1/2.
+bool is_flat(const TetMesh& mesh, std::size_t t) {
+  if (is_flat_corners(mesh, t, 1e-6)) return true;
   if (!mesh.is_second_order()) return false;
   Point3 corners[4], mids[6];
   local_nodes(mesh, t, /*straight=*/true, corners, mids);
@@ -248,6 +254,103 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
     }
   }
   return report;
+}
+
+std::size_t remove_flat_boundary_tets(TetMesh& mesh, double flat) {
+  if (mesh.is_second_order()) throw std::invalid_argument("remove_flat_boundary_tets: linear meshes only");
+  const std::vector<int> labels = face_labels(mesh);
+  std::vector<std::uint64_t> cad_edges;
+  for (const auto& e : mesh.edges) cad_edges.push_back(edge_key(e[0], e[1]));
+  std::sort(cad_edges.begin(), cad_edges.end());
+  // Outward faces of a positively oriented tet: opposite corner i, (i+1, i+2, i+3), reversed for odd i.
+  const auto tet_face = [&](const std::array<Index, 4>& v, int i) {
+    std::array<Index, 3> f{v[(i + 1) & 3], v[(i + 2) & 3], v[(i + 3) & 3]};
+    if (i % 2 == 1) std::swap(f[1], f[2]);
+    return f;
+  };
+  const auto sorted = [](std::array<Index, 3> f) {
+    std::sort(f.begin(), f.end());
+    return f;
+  };
+  std::size_t removed = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::map<std::array<Index, 3>, std::size_t> face_index;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) face_index.emplace(sorted(mesh.faces[f]), f);
+    std::vector<std::uint8_t> dead_tet(mesh.tets.size(), 0), dead_face(mesh.faces.size(), 0);
+    struct NewFace {
+      std::array<Index, 3> v;
+      int facet, marker;
+    };
+    std::vector<NewFace> added;
+    std::vector<std::uint8_t> touched(mesh.points.size(), 0);  // one removal per neighbourhood and pass
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+      if (!is_flat_corners(mesh, t, flat)) continue;
+      const auto& v = mesh.tets[t];
+      if (touched[v[0]] || touched[v[1]] || touched[v[2]] || touched[v[3]]) continue;
+      int boundary[4], n = 0;
+      std::size_t which[4];
+      for (int i = 0; i < 4; ++i) {
+        const auto it = face_index.find(sorted(tet_face(v, i)));
+        if (it != face_index.end() && !dead_face[it->second]) {
+          boundary[n] = i;
+          which[n++] = it->second;
+        }
+      }
+      if (n != 2 || labels[which[0]] != labels[which[1]]) continue;
+      // The two boundary faces are opposite corners boundary[0] and boundary[1]; they share the edge of the other
+      // two corners.
+      int others[2], k = 0;
+      for (int i = 0; i < 4; ++i)
+        if (i != boundary[0] && i != boundary[1]) others[k++] = i;
+      if (std::binary_search(cad_edges.begin(), cad_edges.end(), edge_key(v[others[0]], v[others[1]]))) continue;
+      dead_tet[t] = 1;
+      dead_face[which[0]] = dead_face[which[1]] = 1;
+      // The cap is flat, so the new boundary faces point where the old ones did: orient each new face along the
+      // old faces' summed normal (the tet's own orientation is not to be trusted when it is flat).
+      const auto normal = [&](const std::array<Index, 3>& f) {
+        const Point3 &a = mesh.points[f[0]], &b = mesh.points[f[1]], &c = mesh.points[f[2]];
+        const Point3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        return Point3{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+      };
+      const Point3 n0 = normal(mesh.faces[which[0]]), n1 = normal(mesh.faces[which[1]]);
+      const Point3 up{n0[0] + n1[0], n0[1] + n1[1], n0[2] + n1[2]};
+      for (int i : others) {
+        std::array<Index, 3> f = tet_face(v, i);
+        const Point3 n = normal(f);
+        if (n[0] * up[0] + n[1] * up[1] + n[2] * up[2] < 0) std::swap(f[1], f[2]);
+        added.push_back({f, mesh.face_facet.empty() ? -1 : mesh.face_facet[which[0]],
+                         mesh.face_marker.empty() ? 0 : mesh.face_marker[which[0]]});
+      }
+      for (Index x : v) touched[x] = 1;
+      ++removed;
+      changed = true;
+    }
+    if (!changed) break;
+    TetMesh next = mesh;
+    next.tets.clear();
+    next.tet_region.clear();
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+      if (dead_tet[t]) continue;
+      next.tets.push_back(mesh.tets[t]);
+      if (!mesh.tet_region.empty()) next.tet_region.push_back(mesh.tet_region[t]);
+    }
+    next.faces.clear();
+    next.face_facet.clear();
+    next.face_marker.clear();
+    const auto keep_face = [&](const std::array<Index, 3>& f, int facet, int marker) {
+      next.faces.push_back(f);
+      if (!mesh.face_facet.empty()) next.face_facet.push_back(facet);
+      if (!mesh.face_marker.empty()) next.face_marker.push_back(marker);
+    };
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      if (!dead_face[f])
+        keep_face(mesh.faces[f], mesh.face_facet.empty() ? -1 : mesh.face_facet[f],
+                  mesh.face_marker.empty() ? 0 : mesh.face_marker[f]);
+    for (const NewFace& f : added) keep_face(f.v, f.facet, f.marker);
+    mesh = std::move(next);
+  }
+  return removed;
 }
 
 }  // namespace qualmesh

@@ -232,3 +232,50 @@ TEST(CadFit, PartStepSecondOrder) { expect_fitted_onto_cad("part.step", true); }
 
 }  // namespace
 }  // namespace qualmesh
+
+namespace qualmesh {
+namespace {
+
+// Two tets sharing the face (0,1,2); a third, flat one (0,2,1,3)-like cap lies on top with two boundary faces in the
+// same plane: removing it leaves its other two faces as the boundary, same label, outward.
+TEST(FlatCaps, AFlatTetWithTwoBoundaryFacesOnOneFaceIsRemovedAndTheBoundaryStaysClosed) {
+  TetMesh m;
+  // A square (0,0,0)-(1,1,0) split along 0-2 into two tets with apex 4 below (z = -1); on top a flat tet
+  // (0,1,2,3) with 3 = (0,1,0): the square's other diagonal 1-3.
+  m.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, -1}};
+  m.tets = {{0, 2, 1, 4}, {0, 3, 2, 4}, {0, 1, 2, 3}};
+  // Orient every tet positively except the flat one, whose volume is 0 either way.
+  for (auto& t : m.tets) {
+    const Point3 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]], &d = m.points[t[3]];
+    const double det = (b[0] - a[0]) * ((c[1] - a[1]) * (d[2] - a[2]) - (c[2] - a[2]) * (d[1] - a[1])) -
+                       (b[1] - a[1]) * ((c[0] - a[0]) * (d[2] - a[2]) - (c[2] - a[2]) * (d[0] - a[0])) +
+                       (b[2] - a[2]) * ((c[0] - a[0]) * (d[1] - a[1]) - (c[1] - a[1]) * (d[0] - a[0]));
+    if (det < 0) std::swap(t[1], t[2]);
+  }
+  // Boundary: the flat tet's two upper faces (0,1,3) and (1,2,3) (the square split along 1-3), label 7, and the four
+  // side faces of the pyramid, label 9.
+  m.faces = {{0, 1, 3}, {1, 2, 3}, {0, 4, 1}, {1, 4, 2}, {2, 4, 3}, {3, 4, 0}};
+  m.face_marker = {7, 7, 9, 9, 9, 9};
+  m.face_facet = {0, 0, 1, 1, 1, 1};
+  EXPECT_EQ(remove_flat_boundary_tets(m), 1u);
+  ASSERT_EQ(m.tets.size(), 2u);
+  ASSERT_EQ(m.faces.size(), 6u);
+  // The new boundary on top is the square split along 0-2, label 7, normals up (+z).
+  int top = 0;
+  for (std::size_t f = 0; f < m.faces.size(); ++f) {
+    if (m.face_marker[f] != 7) continue;
+    ++top;
+    const auto& v = m.faces[f];
+    const Point3 &a = m.points[v[0]], &b = m.points[v[1]], &c = m.points[v[2]];
+    const double nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    EXPECT_GT(nz, 0) << f;
+    std::array<Index, 3> s = v;
+    std::sort(s.begin(), s.end());
+    EXPECT_TRUE(s == (std::array<Index, 3>{0, 1, 2}) || s == (std::array<Index, 3>{0, 2, 3}));
+  }
+  EXPECT_EQ(top, 2);
+  EXPECT_EQ(remove_flat_boundary_tets(m), 0u);
+}
+
+}  // namespace
+}  // namespace qualmesh

@@ -101,6 +101,7 @@ struct CadFitReport {
   NodeMoveReport corners;                // the moves of the corner nodes (linear element checks)
   NodeMoveReport mids;                   // the moves of the mid nodes (Jacobian checks at the ten nodes)
   std::size_t num_fixed_vertices = 0;    // nodes on two or more CAD edges (CAD vertices): never moved
+  std::size_t num_flat_caps_removed = 0; // flat tetrahedra against the boundary removed (remove_flat_boundary_tets)
 };
 
 // Moves every boundary node of `mesh` onto the CAD face or edge it lies on: a node on one marked edge (Edge<e>)
@@ -108,7 +109,8 @@ struct CadFitReport {
 // vertex) stays. `mesh` must come from meshing read_cad(path, options).plc (face markers = CAD face
 // numbers, edge markers = CAD edge numbers). A node already on its face or edge to rounding (1e-12 of the
 // diagonal) is not moved, so exact planar polygons stay exact. Moves are checked (move_nodes_checked): a node whose move would invert
-// or badly distort an element goes part of the way or stays, and the report counts it. With
+// or badly distort an element goes part of the way or stays, and the report counts it. Then the nearly flat
+// tetrahedra lying against a face are removed (remove_flat_boundary_tets: CalculiX refuses them). With
 // options.second_order the mesh is made second order and the mid nodes are fitted the same way. Throws InputError
 // as read_cad does (the model is read again unless it is the one read_cad read last in this process).
 CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options, TetMesh& mesh,
