@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test: the unit and property tests under AddressSanitizer and
 # UndefinedBehaviorSanitizer (build-asan/; the real-model meshing suites RealModels*, PumpReal, CadMeshes* and ScadMeshes* take
-# minutes each there, so they run in the Release build only), then the whole suite in the Release build (build/).
+# minutes each there, so they run in the Release build only) and the hostile catalogue against the sanitizer build
+# of the CLI, then the whole suite in the Release build (build/).
 # CTest's closing summary of the Release run is the last thing printed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,6 +15,10 @@ cmake --build build-asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions="$PWD/tests/sanitizer/lsan.supp" \
   ctest --test-dir build-asan -L cpp -E "RealModels|PumpReal|CadMeshes|ScadMeshes" --output-on-failure -j"$jobs"
+# The whole hostile catalogue (tests/hostile/) against the sanitizer build of the CLI too (about 30 s).
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  LSAN_OPTIONS=suppressions="$PWD/tests/sanitizer/lsan.supp" \
+  ctest --test-dir build-asan -R "^py_test_hostile$" --output-on-failure
 
 echo "== release build, full suite =="
 bash scripts/build.sh
