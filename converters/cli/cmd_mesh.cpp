@@ -2,8 +2,10 @@
 // [--delta 0.45] [--encroaching all|steiner] [--no-pump] [--no-sliver-insertion]`: weighted Delaunay refinement
 // of the input PLC (Cheng & Dey, QUALMESH: Rules 1-4, then pumping, then points at the slivers pumping left;
 // --no-pump stops after Rules 1-3, --no-sliver-insertion after pumping), written to OUT in the format its extension
-// names. A progress bar on stderr when stderr is a terminal (silent otherwise), then a short summary on stdout:
-// counts, quality figures and time per stage. Exit 2 for bad input or usage; nothing is written then.
+// names. A CAD input's boundary nodes then go onto its CAD faces and edges (fit_mesh_to_cad), and `--order 2` makes
+// 10-node tetrahedra whose mid nodes follow the curved faces. A progress bar on stderr when stderr is a terminal
+// (silent otherwise), then a short summary on stdout: counts, quality figures, the CAD fit and time per stage.
+// Exit 2 for bad input or usage, 4 for a resource limit; nothing is written then.
 #include <unistd.h>
 
 #include <cstdio>
@@ -37,28 +39,33 @@ struct MeshArgs {
 };
 
 // After meshing: CAD inputs get their boundary nodes (and mid nodes) onto the CAD faces and edges
-// (fit_mesh_to_cad); other inputs are made second order when asked. Prints one summary line.
-void finish_mesh(const MeshArgs& args, TetMesh& mesh) {
+// (fit_mesh_to_cad); other inputs are made second order when asked. Returns the summary lines of the fit.
+std::string finish_mesh(const MeshArgs& args, TetMesh& mesh) {
   const bool cad = has_cad_faces(args.input);
   if (!cad) {
     if (args.order == 2) make_second_order(mesh);
-    return;
+    return "";
   }
   CadFitOptions fit;
   fit.second_order = args.order == 2;
   const CadFitReport r = fit_to_cad_input(args.input, args.input_options, fit, mesh);
-  std::printf("cad fit:     %zu boundary nodes onto their CAD faces/edges (max offset %.3g): %zu in full (%zu moving "
+  char line[600];
+  std::snprintf(line, sizeof line, "cad fit:     %zu boundary nodes onto their CAD faces/edges (max offset %.3g): %zu in full (%zu moving "
               "interior nodes too), %zu part way, %zu not moved (an element would invert); %zu flat tetrahedra "
               "against the boundary removed\n",
               r.num_corner_targets, r.max_offset_before, r.corners.num_full, r.corners.num_dragged,
               r.corners.num_partial, r.corners.num_refused, r.num_flat_caps_removed);
-  if (fit.second_order)
-    std::printf("curving:     %zu mid nodes onto their CAD faces/edges: %zu in full (%zu moving interior nodes too), "
+  std::string lines = line;
+  if (fit.second_order) {
+    std::snprintf(line, sizeof line, "curving:     %zu mid nodes onto their CAD faces/edges: %zu in full (%zu moving interior nodes too), "
                 "%zu relaxed toward straight, %zu left straight; min Jacobian ratio %.3g, %zu elements below %.2g; %zu "
                 "flat elements (flat in the straight mesh already)\n",
                 r.num_mid_targets, r.mids.num_full, r.mids.num_dragged, r.mids.num_partial, r.mids.num_refused,
                 r.mids.min_jacobian_ratio, r.mids.num_bad_elements, fit.moves.min_jacobian_ratio,
                 r.mids.num_flat_elements);
+    lines += line;
+  }
+  return lines;
 }
 
 int run_mesh(MeshArgs& args) {
@@ -95,12 +102,13 @@ int run_mesh(MeshArgs& args) {
   if (stopped && !args.limits.allow_partial) return kExitResource;
   if (tty) std::fprintf(stderr, "\r%70s\r", "");
   if (!check_mesh_result(plc, args.input, args.options, result)) return kExitBadInput;  // no tetrahedron
-  finish_mesh(args, result.mesh);
+  const std::string fit_lines = finish_mesh(args, result.mesh);
   write_tet_mesh(result.mesh, args.output);
   const MeshStats& st = result.stats;
   std::printf("input:       %zu vertices, %zu facets\n", plc.vertices.size(), plc.facets.size());
   std::printf("output:      %zu vertices (%zu Steiner), %zu tetrahedra, %zu boundary faces\n",
               result.mesh.points.size(), st.num_steiner_vertices, result.mesh.tets.size(), result.mesh.faces.size());
+  std::fputs(fit_lines.c_str(), stdout);
   if (st.encroaching_fell_back)
     std::printf("encroaching: steiner mode gave up (-v says why); meshed again with the paper's rule\n");
   std::printf("insertions:  rule 1 %zu, rule 2 %zu, rule 3 %zu; %zu centres rejected; %zu small-angle skips\n",
@@ -145,7 +153,7 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<MeshArgs>();
   CLI::App* command = app.add_subcommand("mesh", "Quality tetrahedral mesh of a PLC (weighted Delaunay refinement, Rules 1-4 and pumping)");
   command->add_option("input", args->input, "Input model: CAD (.step .stp .iges .igs .brep .fcstd), OpenSCAD (.scad), or a surface/PLC (.poly .smesh .off .stl .obj .mesh)")->required();
-  command->add_option("-o,--output", args->output, "Output mesh (.vtu .node .msh .mesh .inp)")->required();
+  command->add_option("-o,--output", args->output, "Output mesh, format by extension (.inp .unv .msh .vtu .elmer .mesh .node)")->required();
   add_input_options(*command, args->input_options);
   command->add_option("--radius-edge", args->options.radius_edge_bound,
                       "Radius-edge ratio bound rho0 (default 2.0)");
