@@ -199,14 +199,16 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
     elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
     std::vector<double> before(elements.size());
     for (std::size_t i = 0; i < elements.size(); ++i) before[i] = element_measure(mesh, elements[i]);
-    for (Index v : nodes)
+    std::vector<Point3> saved;  // put back exactly (p + s - s need not be p in floating point)
+    for (Index v : nodes) {
+      saved.push_back(mesh.points[v]);
       for (int c = 0; c < 3; ++c) mesh.points[v][c] += shift[c];
+    }
     spoiled.clear();
     for (std::size_t i = 0; i < elements.size(); ++i)
       if (!acceptable(elements[i], before[i])) spoiled.push_back(elements[i]);
     if (spoiled.empty()) return true;
-    for (Index v : nodes)
-      for (int c = 0; c < 3; ++c) mesh.points[v][c] -= shift[c];
+    for (std::size_t i = 0; i < nodes.size(); ++i) mesh.points[nodes[i]] = saved[i];
     return false;
   };
   for (const NodeMove& move : moves) {
@@ -219,7 +221,7 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
       std::vector<Index> group{move.node};
       for (std::size_t t : spoiled)
         for (Index v : element_nodes(t))
-          if (!on_face[v]) group.push_back(v);
+          if (!on_face[v] && v != move.node) group.push_back(v);
       std::sort(group.begin() + 1, group.end());
       group.erase(std::unique(group.begin() + 1, group.end()), group.end());
       if (group.size() > 1 && try_shift(group, full)) {

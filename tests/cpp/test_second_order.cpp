@@ -109,6 +109,7 @@ TEST(SecondOrder, MovesThatWouldInvertAreRelaxedOrRefused) {
   TetMesh m;
   m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   m.tets = {{0, 1, 2, 3}};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};  // all on the boundary: nothing to drag along
   make_second_order(m);
   const Index mid01 = m.tet_mid[0][0];
   // A small bulge is fine in full; a huge one is not made in full, and the element stays acceptable.
@@ -124,6 +125,7 @@ TEST(SecondOrder, MovesThatWouldInvertAreRelaxedOrRefused) {
   TetMesh lin;
   lin.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   lin.tets = {{0, 1, 2, 3}};
+  lin.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};  // all on the boundary: nothing to drag along
   NodeMoveReport flip = move_nodes_checked(lin, {{3, {0, 0, -1}}});
   EXPECT_EQ(flip.num_full, 0u);
   EXPECT_EQ(flip.num_bad_elements, 0u);
@@ -275,6 +277,36 @@ TEST(FlatCaps, AFlatTetWithTwoBoundaryFacesOnOneFaceIsRemovedAndTheBoundaryStays
   }
   EXPECT_EQ(top, 2);
   EXPECT_EQ(remove_flat_boundary_tets(m), 0u);
+}
+
+}  // namespace
+}  // namespace qualmesh
+
+namespace qualmesh {
+namespace {
+
+// A boundary corner whose full move would invert its element drags the element's interior corner along, so it still
+// reaches its target; a refused move leaves every node bit for bit where it was.
+TEST(SecondOrder, AnInteriorNodeIsDraggedAlongAndRefusedMovesChangeNothing) {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.1, 0.1, 0.3}};  // node 3 interior, just above the face 0-1-2
+  m.tets = {{0, 1, 2, 3}};
+  m.faces = {{0, 2, 1}};  // only the bottom face is boundary
+  // Lift node 0 above node 3: alone it would invert the tet; with node 3 dragged by the same vector it does not.
+  const NodeMoveReport r = move_nodes_checked(m, {{0, {0, 0, 0.5}}});
+  EXPECT_EQ(r.num_full, 1u);
+  EXPECT_EQ(r.num_dragged, 1u);
+  EXPECT_EQ(m.points[0], (Point3{0, 0, 0.5}));
+  EXPECT_DOUBLE_EQ(m.points[3][2], 0.8);
+  // Everything on the boundary: the same kind of move is refused and nothing moves at all.
+  TetMesh b;
+  b.points = {{0.1, 0.2, 0.3}, {1.1, 0.2, 0.3}, {0.1, 1.2, 0.3}, {0.2, 0.3, 0.6}};
+  b.tets = {{0, 1, 2, 3}};
+  b.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  const std::vector<Point3> before = b.points;
+  const NodeMoveReport refused = move_nodes_checked(b, {{0, {0.1, 0.2, 5.0}}});
+  EXPECT_EQ(refused.num_full + refused.num_partial, 0u);
+  EXPECT_EQ(b.points, before);
 }
 
 }  // namespace
