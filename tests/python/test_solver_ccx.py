@@ -339,9 +339,10 @@ SLOW_CAD_FILES = {
 
 # Known defect of the refinement engine (issue 16), not of the deck: model1.igs's mesh holds an exactly flat
 # tetrahedron (6V / L^3 = 8e-15) with its four corners on the boundary but no boundary face, which ccx refuses
-# ("nonpositive jacobian determinant in element 46327"). Flat tetrahedra lying against a face are removed after the
-# CAD fit (remove_flat_boundary_tets); this one is not against a face. strict: the day it passes, the mark goes.
-ENGINE_FLAT_TET = {"model1.igs"}
+# ("nonpositive jacobian determinant in element 46327"); bottle.brep (slow set) likewise (element 228597; the
+# summary counts 349 elements too flat to judge). Flat tetrahedra lying against a face are removed after the CAD fit
+# (remove_flat_boundary_tets); these are not against a face. strict: the day they pass, the mark goes.
+ENGINE_FLAT_TET = {"model1.igs", "bottle.brep"}
 
 
 @pytest.mark.parametrize("name", [
