@@ -20,17 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
+using test::slurp;
+using test::write_text;
 
 void expect_same_volume_mesh(const TetMesh& a, const TetMesh& b) {
   ASSERT_EQ(a.points.size(), b.points.size());

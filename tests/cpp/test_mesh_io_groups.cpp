@@ -26,17 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
+using test::slurp;
+using test::write_text;
 
 std::array<Index, 3> sorted3(std::array<Index, 3> f) {
   std::sort(f.begin(), f.end());
