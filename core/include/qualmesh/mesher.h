@@ -67,6 +67,12 @@ struct MeshOptions {
   // angles, when one keeps the boundary, rho0 and the weight caps and improves its neighbourhood; the new stars are
   // pumped again. Adds at most 4.8% of plain refinement's vertex count. false: pumping alone (for comparison).
   bool sliver_insertion = true;
+  // Last, beyond the paper (issue 16): where tetrahedra below sliver_angle_deg are left after extraction, their
+  // vertices are moved (input vertices never; segment vertices along their segment, facet vertices within their
+  // facet) and flips are made inside regions away from boundary and internal faces, each only when the smallest
+  // dihedral angle of what it changes grows. Conformity stays exact; the touched tetrahedra (MeshStats::
+  // num_tets_improved) are no longer weighted Delaunay. Runs only with pump = true. false: the engine's mesh as is.
+  bool improve = true;
 
   // Cancellation (issue 18, for --time-limit, a memory budget and the FreeCAD task panel): when set, polled every
   // 64 vertex insertions and in the pumping passes; once it returns true, meshing stops as at the vertex limit
@@ -129,6 +135,11 @@ struct MeshStats {
   double max_weight_cap_ratio = 0;            // max over vertices of weight / min(omega0^2 f^2, delta^2 N^2)
   double max_weight = 0;                      // largest weight (model units squared)
   double min_dihedral_before_pumping_deg = 0; // over in-domain tetrahedra after refinement
+  // The improvement pass (MeshOptions::improve; zero when it did not run).
+  std::size_t num_tets_improved = 0;          // output tetrahedra it changed (new by a flip, or a vertex moved)
+  std::size_t num_improve_vertex_moves = 0;   // accepted vertex moves
+  std::size_t num_improve_flips = 0;          // 2-3 flips and edge removals (n-to-2n-4, n = 3: 3-2 flips)
+  double min_dihedral_before_improve_deg = 0; // over all tetrahedra as extracted, before the pass
   // Output tetrahedra not touching an acute input angle (MeshResult::tet_touches_acute_angle): the smallest
   // dihedral angle among them, and how many have one below MeshOptions::sliver_angle_deg.
   double min_dihedral_away_from_acute_deg = 0;
@@ -140,6 +151,7 @@ struct MeshStats {
   double seconds_refinement = 0;
   double seconds_pumping = 0;  // Rule 4 rounds, pumping and sliver insertion
   double seconds_extraction = 0;
+  double seconds_improve = 0;
 };
 
 enum class MeshStatus {

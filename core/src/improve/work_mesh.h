@@ -1,0 +1,87 @@
+// The mutable tetrahedral mesh of the improvement pass (improve.h): tetrahedra with region attributes, a
+// vertex-to-tetrahedra incidence kept up to date by flips, the constraint faces (every face of TetMesh::faces:
+// domain boundary and internal facets) and the protected edges (on input segments) that no flip may remove, and the
+// one quality measure (smallest dihedral angle, quality.h). Private to core/src/improve/.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "qualmesh/quality.h"
+#include "qualmesh/tet_mesh.h"
+
+namespace qualmesh::detail {
+
+using Tet4 = std::array<Index, 4>;
+using Face3 = std::array<Index, 3>;
+using Edge2 = std::array<Index, 2>;
+
+inline Face3 sorted_face(Index a, Index b, Index c) {
+  Face3 f{a, b, c};
+  std::sort(f.begin(), f.end());
+  return f;
+}
+inline Edge2 sorted_edge(Index a, Index b) { return a < b ? Edge2{a, b} : Edge2{b, a}; }
+
+// Smallest dihedral angle in degrees of (p0, p1, p2, p3), or -1 when it is not positively oriented by a margin
+// (six times its volume at most 1e-13 of its longest edge cubed).
+double oriented_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3);
+
+struct WorkMesh {
+  std::vector<Point3>* points = nullptr;
+  std::vector<Tet4> tets;
+  std::vector<int> region;
+  std::vector<std::uint8_t> alive;
+  std::vector<std::uint8_t> touched;           // new (flip) or with a moved vertex
+  std::vector<std::vector<Index>> incident;    // vertex -> alive tets holding it
+  std::vector<Face3> constraint_faces;         // sorted vertex triples, sorted
+  std::vector<Edge2> protected_edges;          // sorted pairs, sorted
+  std::vector<std::vector<Index>> vertex_faces;  // vertex -> indices into TetMesh::faces holding it
+
+  const Point3& point(Index v) const { return (*points)[v]; }
+  double quality(Index t) const {
+    const Tet4& v = tets[t];
+    return oriented_min_dihedral_deg(point(v[0]), point(v[1]), point(v[2]), point(v[3]));
+  }
+  bool is_constraint_face(Index a, Index b, Index c) const {
+    return std::binary_search(constraint_faces.begin(), constraint_faces.end(), sorted_face(a, b, c));
+  }
+  bool is_protected_edge(Index a, Index b) const {
+    return std::binary_search(protected_edges.begin(), protected_edges.end(), sorted_edge(a, b));
+  }
+  // Whether some alive tet holds both u and w.
+  bool has_edge(Index u, Index w) const {
+    for (Index t : incident[u])
+      for (Index x : tets[t])
+        if (x == w) return true;
+    return false;
+  }
+  Index add_tet(const Tet4& t, int label) {
+    const Index id = Index(tets.size());
+    tets.push_back(t);
+    region.push_back(label);
+    alive.push_back(1);
+    touched.push_back(1);
+    for (Index v : t) incident[v].push_back(id);
+    return id;
+  }
+  void kill_tet(Index id) {
+    alive[id] = 0;
+    for (Index v : tets[id]) {
+      auto& list = incident[v];
+      list.erase(std::find(list.begin(), list.end(), id));
+    }
+  }
+};
+
+// Flips (flips.cpp). Each tries every flip that removes tet `t` (edge removal over its six edges, n from 3 to
+// max_ring, and 2-3 flips over its four faces), inside one region and away from constraint faces and protected
+// edges, and applies the one whose new tetrahedra have the largest smallest dihedral angle, when that is larger
+// than the smallest of the tetrahedra it replaces. `rho_bound` > 0: no new tetrahedron has a radius-edge ratio
+// above max(rho_bound, the largest among those replaced). Returns 0 (nothing done), 1 (2-3 flip) or n (edge
+// removal of a ring of n).
+int flip_to_remove(WorkMesh& w, Index t, int max_ring, double rho_bound);
+
+}  // namespace qualmesh::detail

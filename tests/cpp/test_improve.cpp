@@ -1,0 +1,274 @@
+// Tests of the conformity-keeping improvement pass (core/src/improve, issue 16's last pass after QUALMESH).
+// Constructed cases are Delaunay triangulations (CGAL) of the unit box's corners (the input PLC: 6 quad facets)
+// plus chosen points inside it, on its faces and on its edges. Properties asserted:
+//   - classification: box corners fixed, edge points on their segment, face points in their facet, others free;
+//   - a sliver inside the box is removed by vertex moves alone, and by flips alone;
+//   - input vertices never move, a segment vertex moves only along its line, a facet vertex only in its plane
+//     (exactly: the constrained coordinates keep their bits);
+//   - conformity: the boundary faces are the same list, volume and each facet's area agree to 1e-9
+//     (check_mesh), every tet positively oriented, faces still match;
+//   - the minimum dihedral angle over all tets never decreases and the count below the threshold decreases;
+//   - determinism: the same mesh in gives the same bytes out;
+//   - on real inputs (joint.off, fandisk.off through mesh_plc): the same figures, default against --no-improve.
+#include <gtest/gtest.h>
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "improve/improve.h"
+#include "qualmesh/mesh_check.h"
+#include "qualmesh/mesher.h"
+#include "qualmesh/plc_io.h"
+#include "qualmesh/quality.h"
+#include "test_support.h"
+
+namespace {
+
+using qualmesh::Index;
+using qualmesh::Plc;
+using qualmesh::Point3;
+using qualmesh::TetMesh;
+using qualmesh::detail::VertexFreedom;
+using K = CGAL::Epick;
+using Delaunay = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<
+                                                       CGAL::Triangulation_vertex_base_with_info_3<Index, K>>>;
+
+// The unit box as a PLC: corners 0..7 (bit 0: x, bit 1: y, bit 2: z), facets x=0, x=1, y=0, y=1, z=0, z=1.
+Plc unit_box() {
+  Plc plc;
+  for (int i = 0; i < 8; ++i) plc.vertices.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  const int quads[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+  for (int f = 0; f < 6; ++f) {
+    qualmesh::Facet facet;
+    facet.polygons.push_back({Index(quads[f][0]), Index(quads[f][1]), Index(quads[f][2]), Index(quads[f][3])});
+    facet.marker = f + 1;
+    plc.facets.push_back(facet);
+  }
+  return plc;
+}
+
+// The box facet a point lies on (-1: none); for a triangle, the facet all three share.
+int box_facet_of(const Point3& a, const Point3& b, const Point3& c) {
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side)
+      if (a[axis] == side && b[axis] == side && c[axis] == side) return 2 * axis + side;
+  return -1;
+}
+
+// Delaunay tetrahedralisation of the box corners plus `extra`, as the mesher's output would be: positively oriented
+// tets, hull faces outward with their facet and marker.
+TetMesh delaunay_box(const std::vector<Point3>& extra) {
+  std::vector<Point3> points = unit_box().vertices;
+  points.insert(points.end(), extra.begin(), extra.end());
+  Delaunay dt;
+  for (Index i = 0; i < points.size(); ++i) dt.insert(K::Point_3(points[i][0], points[i][1], points[i][2]))->info() = i;
+  TetMesh mesh;
+  mesh.points = points;
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    mesh.tets.push_back({c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()});
+    mesh.tet_region.push_back(1);
+    for (int i = 0; i < 4; ++i) {
+      if (!dt.is_infinite(c->neighbor(i))) continue;
+      std::array<Index, 3> f{c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(),
+                             c->vertex((i + 3) & 3)->info()};
+      if (i % 2 == 1) std::swap(f[1], f[2]);
+      const int facet = box_facet_of(points[f[0]], points[f[1]], points[f[2]]);
+      mesh.faces.push_back(f);
+      mesh.face_facet.push_back(facet);
+      mesh.face_marker.push_back(facet + 1);
+    }
+  }
+  return mesh;
+}
+
+double min_dihedral(const TetMesh& m, double threshold = 0, std::size_t* below = nullptr) {
+  double q = 180;
+  if (below) *below = 0;
+  for (const auto& t : m.tets) {
+    const double a = qualmesh::tet_min_dihedral_deg(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
+    q = std::min(q, a);
+    if (below && a < threshold) ++*below;
+  }
+  return q;
+}
+
+void expect_conforming(const TetMesh& mesh, const Plc& plc, const std::string& name) {
+  const qualmesh::CheckReport r = qualmesh::check_mesh(mesh, &plc);
+  EXPECT_EQ(r.num_nonpositive_tets, 0u) << name;
+  EXPECT_EQ(r.num_bad_indices + r.num_duplicate_tets + r.num_overshared_faces + r.num_folded_faces, 0u) << name;
+  ASSERT_TRUE(r.has_reference) << name;
+  EXPECT_LT(r.volume_relative_error, 1e-9) << name;
+  EXPECT_LT(r.max_facet_area_relative_error, 1e-9) << name;
+  EXPECT_EQ(r.num_faces_off_input, 0u) << name;
+}
+
+// A deterministic point cloud: n points in the box, m on its faces, k on its edges (a small LCG).
+std::vector<Point3> cloud(int n, int m, int k, unsigned seed) {
+  std::uint64_t s = seed * 0x9E3779B97F4A7C15ull + 1;
+  auto r = [&]() {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    return 0.05 + 0.9 * double(s >> 11) / 9007199254740992.0;
+  };
+  std::vector<Point3> out;
+  for (int i = 0; i < n; ++i) out.push_back({r(), r(), r()});
+  for (int i = 0; i < m; ++i) {
+    Point3 p{r(), r(), r()};
+    p[i % 3] = double((i / 3) % 2);
+    out.push_back(p);
+  }
+  for (int i = 0; i < k; ++i) {
+    Point3 p{double(i % 2), double((i / 2) % 2), r()};
+    std::rotate(p.begin(), p.begin() + (i / 4) % 3, p.end());
+    out.push_back(p);
+  }
+  return out;
+}
+
+TEST(Improve, ClassifiesBoxVertices) {
+  const Plc plc = unit_box();
+  const TetMesh mesh = delaunay_box({{0.5, 0, 0}, {0.5, 0.5, 0}, {0.5, 0.5, 0.5}, {1, 0.3, 1}, {0.2, 1, 0.7}});
+  const auto c = qualmesh::detail::classify_vertices(mesh, plc);
+  ASSERT_EQ(c.size(), 13u);
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(c[i].freedom, VertexFreedom::Fixed) << i;
+  EXPECT_EQ(c[8].freedom, VertexFreedom::OnSegment);
+  EXPECT_NEAR(std::fabs(c[8].direction[0]), 1.0, 1e-12);
+  EXPECT_EQ(c[9].freedom, VertexFreedom::InFacet);
+  EXPECT_NEAR(std::fabs(c[9].direction[2]), 1.0, 1e-12);
+  EXPECT_EQ(c[10].freedom, VertexFreedom::Interior);
+  EXPECT_EQ(c[11].freedom, VertexFreedom::OnSegment);  // edge x = 1, z = 1
+  EXPECT_NEAR(std::fabs(c[11].direction[1]), 1.0, 1e-12);
+  EXPECT_EQ(c[12].freedom, VertexFreedom::InFacet);  // face y = 1
+  EXPECT_NEAR(std::fabs(c[12].direction[1]), 1.0, 1e-12);
+}
+
+// Four nearly cocircular points in the middle of the box: their Delaunay tetrahedron is a sliver.
+std::vector<Point3> sliver_points() {
+  return {{0.4, 0.4, 0.5}, {0.6, 0.4, 0.5}, {0.6, 0.6, 0.5 + 1e-3}, {0.4, 0.6, 0.5}, {0.5, 0.5, 0.2}, {0.5, 0.5, 0.8}};
+}
+
+TEST(Improve, MovesAloneRemoveAnInteriorSliver) {
+  const Plc plc = unit_box();
+  TetMesh mesh = delaunay_box(sliver_points());
+  std::size_t below_before = 0, below_after = 0;
+  const double before = min_dihedral(mesh, 15, &below_before);
+  ASSERT_LT(before, 2.0);
+  qualmesh::detail::ImproveOptions options;
+  options.flips = false;
+  const auto r = qualmesh::detail::improve_mesh(mesh, plc, options);
+  const double after = min_dihedral(mesh, 15, &below_after);
+  EXPECT_GT(r.num_vertex_moves, 0u);
+  EXPECT_EQ(r.num_flips, 0u);
+  EXPECT_GT(after, before + 5) << "the sliver is still there";
+  EXPECT_LT(below_after, below_before);
+  EXPECT_DOUBLE_EQ(r.min_dihedral_after_deg, after);
+  expect_conforming(mesh, plc, "sliver, moves");
+}
+
+TEST(Improve, FlipsAloneRemoveAnInteriorSliver) {
+  const Plc plc = unit_box();
+  TetMesh mesh = delaunay_box(sliver_points());
+  const TetMesh original = mesh;
+  const double before = min_dihedral(mesh);
+  qualmesh::detail::ImproveOptions options;
+  options.smoothing = false;
+  const auto r = qualmesh::detail::improve_mesh(mesh, plc, options);
+  EXPECT_GT(r.num_flips, 0u);
+  EXPECT_EQ(r.num_vertex_moves, 0u);
+  EXPECT_GT(min_dihedral(mesh), before);
+  // Flips move no point and keep every boundary face as it was.
+  EXPECT_EQ(mesh.points, original.points);
+  EXPECT_EQ(mesh.faces, original.faces);
+  EXPECT_EQ(mesh.face_facet, original.face_facet);
+  EXPECT_EQ(mesh.tet_region.size(), mesh.tets.size());
+  expect_conforming(mesh, plc, "sliver, flips");
+}
+
+TEST(Improve, ConstrainedVerticesMoveOnlyAlongTheirLineOrPlane) {
+  const Plc plc = unit_box();
+  for (unsigned seed : {1u, 2u, 3u}) {
+    TetMesh mesh = delaunay_box(cloud(60, 40, 16, seed));
+    const TetMesh original = mesh;
+    const auto classes = qualmesh::detail::classify_vertices(mesh, plc);
+    std::size_t below_before = 0, below_after = 0;
+    const double before = min_dihedral(mesh, 15, &below_before);
+    const auto r = qualmesh::detail::improve_mesh(mesh, plc, {});
+    const double after = min_dihedral(mesh, 15, &below_after);
+    const std::string name = "cloud " + std::to_string(seed);
+    EXPECT_GE(after, before) << name;
+    EXPECT_LT(below_after, below_before) << name;
+    EXPECT_GT(r.num_vertex_moves, 0u) << name;
+    std::size_t moved_on_boundary = 0;
+    for (Index v = 0; v < mesh.points.size(); ++v) {
+      const Point3 &p = mesh.points[v], &o = original.points[v];
+      switch (classes[v].freedom) {
+        case VertexFreedom::Fixed: EXPECT_EQ(p, o) << name << " vertex " << v; break;
+        case VertexFreedom::InFacet:
+          // The coordinate across the face keeps its bits.
+          for (int axis = 0; axis < 3; ++axis)
+            if (o[axis] == 0 || o[axis] == 1) EXPECT_EQ(p[axis], o[axis]) << name << " vertex " << v;
+          moved_on_boundary += p != o;
+          break;
+        case VertexFreedom::OnSegment: {
+          int on_side = 0;
+          for (int axis = 0; axis < 3; ++axis)
+            if (o[axis] == 0 || o[axis] == 1) {
+              EXPECT_EQ(p[axis], o[axis]) << name << " vertex " << v;
+              ++on_side;
+            }
+          EXPECT_EQ(on_side, 2) << name << " vertex " << v;
+          moved_on_boundary += p != o;
+          break;
+        }
+        case VertexFreedom::Interior: break;
+      }
+    }
+    EXPECT_GT(moved_on_boundary, 0u) << name << ": no boundary vertex moved, the test proves nothing";
+    EXPECT_EQ(mesh.faces, original.faces) << name;
+    expect_conforming(mesh, plc, name);
+  }
+}
+
+TEST(Improve, SameInputSameBytes) {
+  const Plc plc = unit_box();
+  TetMesh a = delaunay_box(cloud(60, 40, 16, 7)), b = a;
+  const auto ra = qualmesh::detail::improve_mesh(a, plc, {});
+  const auto rb = qualmesh::detail::improve_mesh(b, plc, {});
+  ASSERT_GT(ra.num_vertex_moves + ra.num_flips, 0u);
+  EXPECT_EQ(ra.num_vertex_moves, rb.num_vertex_moves);
+  EXPECT_EQ(a.tets, b.tets);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(Point3)), 0);
+}
+
+// The mesher with and without the pass on a real input: never worse, fewer tets below 10 degrees, conforming.
+void expect_improves(const std::string& relative) {
+  const std::string path = qualmesh::test::shared_path(relative);
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "missing input " << path;
+  const Plc plc = qualmesh::read_plc(path);
+  qualmesh::MeshOptions options;
+  options.improve = false;
+  const qualmesh::MeshResult plain = qualmesh::mesh_plc(plc, options);
+  options.improve = true;
+  const qualmesh::MeshResult improved = qualmesh::mesh_plc(plc, options);
+  std::size_t below_plain = 0, below_improved = 0;
+  const double q_plain = min_dihedral(plain.mesh, 10, &below_plain);
+  const double q_improved = min_dihedral(improved.mesh, 10, &below_improved);
+  EXPECT_GE(q_improved, q_plain) << relative;
+  if (below_plain > 0) EXPECT_LT(below_improved, below_plain) << relative;
+  EXPECT_EQ(improved.stats.min_dihedral_deg, q_improved) << relative;
+  EXPECT_EQ(improved.stats.min_dihedral_before_improve_deg, q_plain) << relative;
+  EXPECT_GT(improved.stats.num_tets_improved, 0u) << relative;
+  EXPECT_EQ(improved.mesh.points.size(), plain.mesh.points.size()) << relative;
+  EXPECT_EQ(improved.mesh.faces, plain.mesh.faces) << relative;
+  EXPECT_EQ(improved.tet_touches_acute_angle.size(), improved.mesh.tets.size()) << relative;
+  expect_conforming(improved.mesh, plc, relative);
+}
+
+TEST(ImproveReal, Joint) { expect_improves("data/plc/joint.off"); }
+TEST(ImproveReal, Fandisk) { expect_improves("data/plc/fandisk.off"); }
+
+}  // namespace
