@@ -187,6 +187,40 @@ TEST(Improve, FlipsAloneRemoveAnInteriorSliver) {
   expect_conforming(mesh, plc, "sliver, flips");
 }
 
+// A bipyramid of two tetrahedra over one triangle, one apex 0.05 above it (a flat tet, 9.8 degrees): every vertex
+// is an input vertex and no edge is interior, so only the 2-3 flip can help; it gives three tets of 41.4 degrees.
+TEST(Improve, TwoThreeFlipRemovesAFlatTet) {
+  Plc plc;
+  plc.vertices = {{0, 0, 0}, {1, 0, 0}, {0.5, 0.866, 0}, {0.5, 0.2887, 0.05}, {0.5, 0.2887, -0.5}};
+  const std::array<Index, 3> tris[6] = {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {1, 0, 4}, {2, 1, 4}, {0, 2, 4}};
+  TetMesh mesh;
+  mesh.points = plc.vertices;
+  for (int f = 0; f < 6; ++f) {
+    qualmesh::Facet facet;
+    facet.polygons.push_back({tris[f][0], tris[f][1], tris[f][2]});
+    plc.facets.push_back(facet);
+    mesh.faces.push_back(tris[f]);
+    mesh.face_facet.push_back(f);
+    mesh.face_marker.push_back(0);
+  }
+  for (std::array<Index, 4> t : {std::array<Index, 4>{0, 1, 2, 3}, std::array<Index, 4>{0, 1, 2, 4}}) {
+    const auto& p = mesh.points;
+    if (qualmesh::tet_signed_volume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) < 0) std::swap(t[0], t[1]);
+    mesh.tets.push_back(t);
+  }
+  const TetMesh original = mesh;
+  ASSERT_LT(min_dihedral(mesh), 10.0);
+  const auto r = qualmesh::detail::improve_mesh(mesh, plc, {});
+  EXPECT_EQ(r.num_flips23, 1u);
+  EXPECT_EQ(r.num_vertex_moves, 0u);
+  ASSERT_EQ(mesh.tets.size(), 3u);
+  EXPECT_GT(min_dihedral(mesh), 41.0);
+  EXPECT_EQ(mesh.points, original.points);
+  EXPECT_EQ(mesh.faces, original.faces);
+  EXPECT_EQ(r.num_tets_touched, 3u);
+  expect_conforming(mesh, plc, "bipyramid");
+}
+
 TEST(Improve, ConstrainedVerticesMoveOnlyAlongTheirLineOrPlane) {
   const Plc plc = unit_box();
   for (unsigned seed : {1u, 2u, 3u}) {

@@ -7,8 +7,9 @@
 // in the convex hull of the gradients of the star's nearly worst tetrahedra (each gradient by central differences,
 // projected onto the vertex's line or plane), followed by a line search. Where that finds nothing, deterministic
 // pseudo-random trial moves are tried, as CGAL's perturb_mesh_3 does (Sliver_perturber's random perturbation).
-// A move is accepted only when the star's smallest angle strictly grows, every tetrahedron of the star stays
-// positively oriented (by a margin) and every boundary triangle of the star keeps its orientation in its plane.
+// A move is accepted only when the star's smallest angle strictly grows, no more of the star's tetrahedra are
+// below the threshold than before, every tetrahedron of the star stays positively oriented (by a margin) and every
+// boundary triangle of the star keeps its orientation and its plane.
 #include "improve/improve.h"
 
 #include <algorithm>
@@ -203,7 +204,7 @@ namespace {
 // Smoothing of one vertex within its freedom (see the file comment). Returns whether it moved.
 class Smoother {
  public:
-  Smoother(WorkMesh& w, const TetMesh& mesh) : w_(w), mesh_(mesh) {}
+  Smoother(WorkMesh& w, const TetMesh& mesh, double threshold) : w_(w), mesh_(mesh), threshold_(threshold) {}
 
   bool smooth(Index v, const VertexConstraint& c, unsigned round) {
     v_ = v;
@@ -225,7 +226,11 @@ class Smoother {
       old_normals_.push_back(face_normal(w_.point(t[0]), w_.point(t[1]), w_.point(t[2])));
     }
     Point3 p = start;
+    max_below_ = star_.size();
     double q = star_min(p);
+    // No move may leave more tetrahedra of the star below the threshold than before.
+    max_below_ = 0;
+    for (Index t : star_) max_below_ += tet_quality_at(t, start) < threshold_;
     const double q_start = q;
     for (int iter = 0; iter < 30; ++iter) {
       Point3 next;
@@ -287,11 +292,14 @@ class Smoother {
       if (!(dot(cross(n, o), cross(n, o)) <= 1e-16 * dot(n, n) * dot(o, o))) return -1;
     }
     double q = std::numeric_limits<double>::infinity();
+    std::size_t below = 0;
     for (Index t : star_) {
-      q = std::min(q, tet_quality_at(t, p));
-      if (q < 0) return -1;
+      const double qt = tet_quality_at(t, p);
+      if (qt < 0) return -1;
+      q = std::min(q, qt);
+      below += qt < threshold_;
     }
-    return q;
+    return below > max_below_ ? -1 : q;
   }
 
   // One ascent step from p (star quality q): returns the quality reached and the point in `out`.
@@ -345,6 +353,8 @@ class Smoother {
   std::vector<Index> star_;
   std::vector<Vec> old_normals_;
   double sq_len_ = 0, len_ = 0;
+  double threshold_;
+  std::size_t max_below_ = 0;
 };
 
 double mesh_min_dihedral(const TetMesh& mesh, double threshold, std::size_t* below) {
@@ -417,7 +427,7 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
   std::sort(w.protected_edges.begin(), w.protected_edges.end());
   w.protected_edges.erase(std::unique(w.protected_edges.begin(), w.protected_edges.end()), w.protected_edges.end());
 
-  Smoother smoother(w, mesh);
+  Smoother smoother(w, mesh, threshold);
   std::vector<std::uint8_t> moved(mesh.points.size(), 0);
   bool stop = false;
   for (int round = 0; round < options.max_rounds && !stop; ++round) {
