@@ -1,6 +1,6 @@
 // Input complex of the refinement engine: segments, facet frames and incidences (paper Section 2, "Incidence",
 // "Adjacent elements"), and the acute input angles of Section 3.7's assumption (flagged, not rejected: the engine
-// protects their apices, see subsegments.cpp and refine_engine.cpp).
+// protects their apices, see small_angles.cpp).
 #include "refine/complex.h"
 
 #include <algorithm>

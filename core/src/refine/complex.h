@@ -57,7 +57,7 @@ struct InputComplex {
   bool elements_meet_at_acute_vertex(const std::vector<Index>& vertices_a, const std::vector<Index>& vertices_b) const;
 
   // THE definition of "two input elements meet at an acute input angle" (issue 3; used by Rule 3's skip and by the
-  // output classification, refine_engine.cpp). Elements: an input vertex, a segment or a facet. They meet at an
+  // output classification, small_angles.cpp). Elements: an input vertex, a segment or a facet. They meet at an
   // acute angle when neither contains the other (an element never meets itself) and they share an input vertex v
   // at which:
   //   segment-segment: the angle between them is below 90 degrees;

@@ -42,7 +42,7 @@ TetMesh extract_mesh(MeshState& s, std::vector<std::uint8_t>& touches_acute) {
       const Point3 &p0 = s.point(t.v[0]), &p1 = s.point(t.v[1]), &p2 = s.point(t.v[2]), &p3 = s.point(t.v[3]);
       const double rho = tet_radius_edge(p0, p1, p2, p3);
       if (!t.acute) s.stats.max_radius_edge_away_from_acute = std::max(s.stats.max_radius_edge_away_from_acute, rho);
-      if (rho > s.options.radius_edge_bound) {
+      if (rho > s.params.radius_edge_bound) {
         ++s.stats.num_tets_above_bound;
         if (t.acute) {
           ++s.stats.num_above_bound_acute;

@@ -3,7 +3,8 @@
 //               and the subfacet triangulations;
 //   Boundary    Rules 1 and 2 until no subsegment or subfacet is encroached or missing (the boundary conforms);
 //   Regions     flood fill of the domain's regions (regions.cpp);
-//   Refinement  Rules 1-3 in priority order (refine_engine.cpp);
+//   Refinement  Rules 1-3 in priority order (scheduler.cpp and the levels rule1_subsegments.cpp,
+//               rule2_subfacets.cpp, rule3_tets.cpp);
 //   Pumping     Rule 4 rounds (rule4.cpp), then step 3, pumping the vertices of slivers (pump.cpp), then points
 //               at the slivers pumping left away from acute input angles (sliver_insertion.cpp, unless
 //               MeshOptions::sliver_insertion is false); all skipped with MeshOptions::pump = false;
@@ -48,7 +49,7 @@ void begin_stage(detail::MeshState& s, MeshStage stage) {
 // missing, or let a region flood through a subfacet that was missing at that moment (t13_data.stl as unmerged
 // triangles; the cause is not found yet); always true with the paper's rule.
 bool steiner_holds(detail::MeshState& s, const char* when) {
-  if (s.options.encroaching == MeshOptions::Encroaching::All || s.vertex_limit_reached) return true;
+  if (s.params.encroachment.paper() || s.vertex_limit_reached) return true;
   if (s.steiner_abandoned.empty() && !detail::boundary_present(s))
     s.steiner_abandoned = std::string("a subsegment or subfacet is missing ") + when;
   if (s.steiner_abandoned.empty() && s.regions_known && !detail::region_boundaries_are_subfacets(s))
@@ -93,12 +94,9 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
   auto state = std::make_unique<detail::MeshState>();
   detail::MeshState& s = *state;
   s.plc = &plc;
-  s.options = options;
+  s.set_options(options);
   s.progress = progress;
   s.log = log;
-  s.sq_radius_edge_bound = options.radius_edge_bound * options.radius_edge_bound;
-  s.sq_max_edge = options.max_edge_length > 0 ? options.max_edge_length * options.max_edge_length : 0;
-  s.max_volume = options.max_volume > 0 ? options.max_volume : 0;
 
   MeshResult result;
   auto t = Clock::now();

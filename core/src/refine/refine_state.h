@@ -1,11 +1,14 @@
 // State of the refinement engine (paper Section 3.7, steps 1-2): the one Regular_triangulation_3, the vertex
 // records with their symbolic host (input vertex, point of a segment with parameter t, point of a facet with local
 // coordinates (u, v), or a volume point), the subsegment chains (Section 3.2), the subfacet triangulations
-// (Section 3.2), the regions, and the three work queues of Rules 1, 2 and 3.
+// (Section 3.2), the regions, and the levels of Rules 1, 2 and 3 with their queues (levels.h).
 //
-// Stage files: complex.cpp (input), subsegments.cpp (chains, Rule 1 split points), subfacets.cpp (per-facet 2D
-// triangulations, Lemma 3.5 projection), refine_engine.cpp (Rules 1-3, local encroachment), regions.cpp (flood
-// fill), extract.cpp (TetMesh), mesher.cpp (orchestration, public API).
+// Stage files: complex.cpp (input), refine_params.cpp (derived parameters, encroachment policy), subsegments.cpp
+// (chains, Rule 1 split points), subfacets.cpp (per-facet 2D triangulations, Lemma 3.5 projection, retiling after
+// pumping), insertion.cpp (the one insertion), rule1_subsegments.cpp, rule2_subfacets.cpp, rule3_tets.cpp (the
+// levels), scheduler.cpp (their order), small_angles.cpp (acute input angles), regions.cpp (flood fill), rule4.cpp,
+// pump_star.cpp and pump.cpp (Rule 4, step 3), sliver_insertion.cpp, extract.cpp (TetMesh), mesher.cpp
+// (orchestration, public API).
 #pragma once
 
 #include <array>
@@ -22,6 +25,8 @@
 #include "qualmesh/quality.h"
 #include "local_feature_size.h"
 #include "refine/complex.h"
+#include "refine/levels.h"
+#include "refine/refine_params.h"
 
 namespace qualmesh::detail {
 
@@ -56,41 +61,15 @@ struct SegmentChain {
   Index last = kNoIndex;   // last Steiner vertex before `b` (or `a` when none)
 };
 
-struct SubsegmentEntry {
-  Index segment;
-  Index u, v;  // consecutive vertices on the segment
-  bool forced = false;  // a rejected circumcentre encroaches it: split even if no vertex does
-};
-
-struct SubfacetEntry {
-  Index facet;
-  std::array<Index, 3> vertices;
-  bool has_point = false;  // a rejected circumcentre encroaches it (Rule 3)
-  Point3 point{};
-  bool forced = false;  // split even when no vertex encroaches it (Rule 3 rejection)
-  int attempts = 0;     // times its split point was rejected (it is queued again behind Rule 1's splits)
-  bool eager = false;   // split when a vertex encroaches it, whichever MeshOptions::encroaching says
-};
-
-struct TetEntry {
-  std::array<Index, 4> vertices;
-  int attempts = 0;  // times its circumcentre was rejected
-};
-
 struct RegionInfo {
   int attribute = 0;
   double max_volume = 0;  // <= 0: none
 };
 
 struct MeshState {
-  // Tetrahedra (sorted vertex ids) Rule 3 gave up on after 8 rejected circumcentres (MeshStats' "rejected").
-  std::vector<std::array<Index, 4>> given_up;
   const Plc* plc = nullptr;
-  MeshOptions options;
-  // Derived from the options.
-  double sq_max_edge = 0;  // 0 = none
-  double max_volume = 0;   // 0 = none
-  double sq_radius_edge_bound = 4;
+  MeshOptions options;  // as the user gave them; the engine reads `params`
+  RefineParams params;  // derived once from `options` (RefineParams::from)
 
   InputComplex complex;
   RegularTriangulation3 tr;
@@ -101,9 +80,10 @@ struct MeshState {
   bool regions_known = false;
   std::vector<Index> region_pending;  // boundary vertices inserted since the last flood
 
-  std::deque<SubsegmentEntry> subsegment_queue;  // Rule 1
-  std::deque<SubfacetEntry> subfacet_queue;      // Rule 2
-  std::deque<TetEntry> tet_queue;                // Rule 3
+  // The levels, each with its queue (levels.h); Rules 1-2 hold params.encroachment (init_levels).
+  Rule1Subsegments rule1;
+  Rule2Subfacets rule2;
+  Rule3Tets rule3;
 
   // Rule 4 and pumping (rule4.cpp, pump.cpp): the local feature size of the input (built on first use) and its
   // value per vertex (negative: not computed yet).
@@ -134,6 +114,14 @@ struct MeshState {
     return cancelled;
   }
 
+  // Sets the user's options and derives the parameters once; Rules 1-2 get the encroachment policy.
+  void set_options(const MeshOptions& o) {
+    options = o;
+    params = RefineParams::from(o);
+    rule1.policy = params.encroachment;
+    rule2.policy = params.encroachment;
+  }
+
   void log_line(const std::string& line) const {
     if (log) log(line);
   }
@@ -153,6 +141,14 @@ struct HoleFace {
 inline HoleFace hole_face(const Facet3& f, int region) {
   const Ch3 n = f.first->neighbor(f.second);
   return {n, n->index(f.first), region};
+}
+
+// Whether p lies strictly inside the diametral ball of segment ab / of triangle abc (Section 3.2: p encroaches it).
+inline bool strictly_encroaches(const KPoint3& a, const KPoint3& b, const KPoint3& p) {
+  return Kernel().side_of_bounded_sphere_3_object()(a, b, p) == CGAL::ON_BOUNDED_SIDE;
+}
+inline bool strictly_encroaches(const KPoint3& a, const KPoint3& b, const KPoint3& c, const KPoint3& p) {
+  return Kernel().side_of_bounded_sphere_3_object()(a, b, c, p) == CGAL::ON_BOUNDED_SIDE;
 }
 
 // Smallest dihedral angle of finite cell c in degrees, measured once per cell (CellInfo::min_dihedral_deg): the
@@ -222,9 +218,38 @@ bool flip_subfacet_to_match(MeshState& s, Index facet, const std::array<Index, 3
                             std::vector<std::array<Index, 3>>* new_faces, Index only_across_from = kNoIndex);
 // All in-domain subfacets of f.
 void collect_subfacets(const MeshState& s, Index facet, std::vector<std::array<Index, 3>>& out);
+// Which facet (if any) the triangulation face (c, i) is a subfacet of.
+Index face_subfacet(const MeshState& s, Ch3 c, int i);
+// After a pumping move of vertex v that replaced subfacets (`lost`: facet, sorted ids), flips those facets' 2D
+// triangulations to the new 3D star (Section 7.2's weighted-subfacets). False if some lost subfacet is left, or a
+// subfacet at v is no 3D face (a bug: the move was checked to retile its facets).
+bool retile_facets(MeshState& s, Index v, const std::vector<std::pair<Index, std::array<Index, 3>>>& lost);
 
-// --- refinement (refine_engine.cpp) ---
+// --- insertion (insertion.cpp) ---
+// Step 1: the Delaunay triangulation of the input vertices (throws InputError on duplicates or no volume).
 void insert_input_vertices(MeshState& s);
+// The conflict zone of p (weight zero), located from `hint`; false when p coincides with a vertex (or the zone is
+// empty). Counts the zone for Encroaching::Steiner's work budget.
+bool find_conflict_zone(MeshState& s, const KPoint3& p, Ch3 hint, ConflictZone& cz);
+void collect_candidates(const MeshState& s, const ConflictZone& cz, Candidates& out);
+// Appends a vertex record (not yet in the triangulation); returns its id.
+Index add_vertex(MeshState& s, const Point3& p, VertexKind kind, Index host, double t = 0);
+// Inserts vertex `id` into the hole of `cz` (consumed) and into its facets' 2D triangulations, gives the new cells
+// `region` (kUnknownRegion for boundary points: flooded later), counts it, and returns what changed; the caller
+// hands that to notify_insertion().
+InsertionResult insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Candidates& cand, int region);
+// A cell incident to vertex v, where point location near v starts.
+Ch3 hint_of(const MeshState& s, Index v);
+// Inserts a volume vertex at p (weight zero) into the hole `cells` (p's conflict zone, CGAL find_conflicts, with
+// its boundary facets `boundary`; both are consumed) with the engine's bookkeeping: vertex record, statistics,
+// regions (`region`: the zone's), and the Rule 1-3 queues for whatever p encroaches or makes bad (a caller that
+// checked p encroaches nothing and makes no bad cell leaves them empty). Returns the new vertex id.
+Index insert_volume_vertex(MeshState& s, const Point3& p, std::vector<Ch3>& cells, std::vector<Facet3>& boundary,
+                           int region);
+
+// --- scheduler (scheduler.cpp) ---
+// Every level's after-insertion hook (Rule 3, Rule 1, Rule 2; each queue keeps its own order).
+void notify_insertion(MeshState& s, const InsertionResult& r);
 void enqueue_initial_boundary(MeshState& s);
 // Drains Rules 1-2 (stage Boundary) or Rules 1-3 (stage Refinement).
 void run_refinement(MeshState& s, bool with_rule3);
@@ -234,21 +259,9 @@ bool region_boundaries_are_subfacets(const MeshState& s);
 // Whether every subsegment and subfacet is an edge / face of the triangulation (a global scan).
 bool boundary_present(const MeshState& s);
 
-// Inserts a volume vertex at p (weight zero) into the hole `cells` (p's conflict zone, CGAL find_conflicts, with
-// its boundary facets `boundary`; both are consumed) with the engine's bookkeeping: vertex record, statistics,
-// regions (`region`: the zone's), and the Rule 1-3 queues for whatever p encroaches or makes bad (a caller that
-// checked p encroaches nothing and makes no bad cell leaves them empty). Returns the new vertex id.
-Index insert_volume_vertex(MeshState& s, const Point3& p, std::vector<Ch3>& cells, std::vector<Facet3>& boundary,
-                           int region);
-// Which facet (if any) the triangulation face (c, i) is a subfacet of.
-Index face_subfacet(const MeshState& s, Ch3 c, int i);
-
-// The one definition of "touches an acute input angle" (MeshResult::tet_touches_acute_angle): the shortest edge
-// of the tetrahedron joins vertices on input elements that meet at an acute angle (InputComplex::elements_meet_acute).
-bool tet_touches_acute_angle(const MeshState& s, const std::array<Index, 4>& ids);
-bool shortest_edge_forced_by_acute_angle(const MeshState& s, Index u, Index w);
+// --- Rule 3, after refinement (rule3_tets.cpp) ---
 // Why an in-domain cell of radius-edge ratio above rho0 was left by Rule 3: skipped for an acute input angle,
-// given up after rejected circumcentres (MeshState::given_up; call sort_given_up() first), or other.
+// given up after rejected circumcentres (Rule3Tets::given_up; call sort_given_up() first), or other.
 enum class LeftReason { AcuteAngle, Rejected, Other };
 void sort_given_up(MeshState& s);
 // Degenerate cells (four nearly cocircular points whose rounded volume may be non-positive) lying on a facet's
@@ -257,14 +270,21 @@ void sort_given_up(MeshState& s);
 void remove_flat_boundary_cells(MeshState& s);
 LeftReason why_left(MeshState& s, Ch3 c);
 
-// The input element hosting vertex v (refine_engine.cpp); *has is false for volume vertices.
+// --- small input angles (small_angles.cpp) ---
+// The input element hosting vertex v; *has is false for volume vertices.
 InputComplex::ElementRef host_element(const MeshState& s, Index v, bool* has);
+// The one definition of "touches an acute input angle" (MeshResult::tet_touches_acute_angle): the shortest edge
+// of the tetrahedron joins vertices on input elements that meet at an acute angle (InputComplex::elements_meet_acute).
+bool tet_touches_acute_angle(const MeshState& s, const std::array<Index, 4>& ids);
+bool shortest_edge_forced_by_acute_angle(const MeshState& s, Index u, Index w);
+// Rule 2's small-angle exemption: present subfacet abc of `facet`, encroached by vertex `enc`, is left alone.
+bool subfacet_encroacher_exempt(const MeshState& s, Index facet, const std::array<Index, 3>& abc, Index enc);
 
 // --- Rule 4 and pumping (rule4.cpp, pump.cpp; paper Sections 3.3, 3.7, 7.2, 7.3) ---
 // f(v), the local feature size at vertex v (paper Section 2), cached per vertex.
 double local_feature_size_at(MeshState& s, Index v);
-// Is finite cell c an in-domain sliver: radius-edge ratio <= rho0 and smallest dihedral angle below
-// MeshOptions::sliver_angle_deg? `min_dihedral_deg` (may be null) gets the cell's smallest dihedral angle.
+// Is finite cell c an in-domain sliver (RefineParams::is_sliver)? `min_dihedral_deg` (may be null) gets the cell's
+// smallest dihedral angle.
 bool is_sliver(const MeshState& s, Ch3 c, double* min_dihedral_deg);
 // The orthosphere of finite cell c in the regular triangulation: its centre and squared radius (pump.cpp).
 std::pair<KPoint3, double> orthosphere(Ch3 c);

@@ -65,7 +65,7 @@ double power(const KPoint3& p, double sq_weight, const KPoint3& center, double s
 std::size_t rule4_vertex(MeshState& s, Index v) {
   const double f = local_feature_size_at(s, v);
   if (!std::isfinite(f) || !(f > 0)) return 0;
-  const double sq_weight = s.options.omega * s.options.omega * f * f;
+  const double sq_weight = s.params.omega_cap(f);
   const KPoint3 p = s.kpoint(v);
   const KWeightedPoint3 wp(p, sq_weight);
   const Vh3 vh = s.vertices[v].handle;
@@ -120,7 +120,7 @@ std::size_t rule4_vertex(MeshState& s, Index v) {
     // Encroached only with the weight: an element v encroaches unweighted is one Rules 1-2 chose to leave (an
     // acute input angle); Rule 4 does not overrule them.
     if (power(p, 0, m, sq_r) >= 0 && power(p, sq_weight, m, sq_r) < 0) {
-      s.subsegment_queue.push_back({e[0], e[1], e[2], true});
+      s.rule1.push({e[0], e[1], e[2], true});
       return 1;  // "use rule 1 to split one"
     }
   }
@@ -137,7 +137,7 @@ std::size_t rule4_vertex(MeshState& s, Index v) {
       const KPoint3 ha = s.kpoint((*h)[0]), hb = s.kpoint((*h)[1]), hc = s.kpoint((*h)[2]);
       if (power(p, sq_weight, CGAL::circumcenter(ha, hb, hc), CGAL::squared_radius(ha, hb, hc)) < 0) target = *h;
     }
-    s.subfacet_queue.push_back({t[0], target, false, {}, true});
+    s.rule2.push({t[0], target, false, {}, true});
     return 1;  // "use rule 2 to split one that contains the projection of v"
   }
   return 0;
@@ -180,8 +180,8 @@ bool is_sliver(const MeshState& s, Ch3 c, double* min_dihedral_deg) {
                &p2 = s.point(c->vertex(2)->info()), &p3 = s.point(c->vertex(3)->info());
   const double angle = cell_min_dihedral_deg(s, c);
   if (min_dihedral_deg) *min_dihedral_deg = angle;
-  if (!(angle < s.options.sliver_angle_deg)) return false;
-  return tet_radius_edge(p0, p1, p2, p3) <= s.options.radius_edge_bound;
+  if (!s.params.below_sliver_angle(angle)) return false;  // the radius-edge ratio only when needed
+  return s.params.is_sliver(angle, tet_radius_edge(p0, p1, p2, p3));
 }
 
 void apply_rule4(MeshState& s) {

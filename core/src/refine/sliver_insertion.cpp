@@ -25,7 +25,7 @@
 //   - improves the mesh locally: the new star's smallest dihedral angle is larger than that of the cells it
 //     destroys (so the mesh's minimum dihedral angle never drops) and it has fewer cells below the sliver angle.
 // Among the accepted candidates the one that removes the most cells below the sliver angle, then the one with the
-// largest smallest angle, is inserted with the refinement engine's insertion (refine_engine.cpp insert_volume_vertex), and the
+// largest smallest angle, is inserted with the refinement engine's insertion (insertion.cpp insert_volume_vertex), and the
 // vertices of the new star are pumped again (pump_around, step 3's caps and checks). The budget, not the
 // candidates, is what limits the pass, so the first round inserts only points that remove at least three cells below
 // the sliver angle, the second two, later rounds one (measured, slivers left away from acute angles at the same
@@ -67,7 +67,7 @@ struct StarQuality {
 
 void add_cell(const MeshState& s, double angle, StarQuality* q) {
   q->min_dihedral_deg = std::min(q->min_dihedral_deg, angle);
-  q->num_bad += angle < s.options.sliver_angle_deg;
+  q->num_bad += s.params.below_sliver_angle(angle);
 }
 
 struct Candidate {
@@ -89,7 +89,7 @@ double sq_dist(const KPoint3& a, const KPoint3& b) { return CGAL::squared_distan
 
 // The largest volume a cell of `region` may have (0: none), as Rule 3 judges it.
 double max_volume_of(const MeshState& s, int region) {
-  double v = s.max_volume;
+  double v = s.params.max_volume;
   if (region >= 0 && s.regions[region].max_volume > 0)
     v = v > 0 ? std::min(v, s.regions[region].max_volume) : s.regions[region].max_volume;
   return v;
@@ -164,7 +164,7 @@ Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, Candidate& out) {
       }
   }
   // Weight caps of the vertices around p: those of the link and those across it.
-  const double sq_delta = s.options.delta * s.options.delta;
+  const double sq_delta = s.params.sq_delta;
   auto cap_kept = [&](Vh3 u) {
     if (u == s.tr.infinite_vertex()) return true;
     return u->point().weight() <= sq_delta * sq_dist(p, u->point().point());
@@ -186,12 +186,12 @@ Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, Candidate& out) {
       q[k] = to_point3(kq[k]);
     }
     if (kernel().orientation_3_object()(kq[0], kq[1], kq[2], kq[3]) != CGAL::POSITIVE) return Refusal::BadCell;
-    if (s.sq_max_edge > 0)
+    if (s.params.sq_max_edge > 0)
       for (int k = 0; k < 4; ++k)
-        if (k != f.second && sq_dist(p, kq[k]) > s.sq_max_edge) return Refusal::BadCell;
+        if (k != f.second && sq_dist(p, kq[k]) > s.params.sq_max_edge) return Refusal::BadCell;
     if (max_volume > 0 && CGAL::volume(kq[0], kq[1], kq[2], kq[3]) > max_volume) return Refusal::BadCell;
     const TetQuality tq = tet_quality(q[0], q[1], q[2], q[3]);
-    if (!(tq.radius_edge <= s.options.radius_edge_bound)) {
+    if (!(tq.radius_edge <= s.params.radius_edge_bound)) {
       // As for pumping: above rho0 only where an acute input angle forces the shortest edge (not one of p's), and
       // not beyond the worst cell destroyed.
       int ea = 0, eb = 1;
@@ -241,7 +241,7 @@ std::vector<Bad> slivers_away_from_acute(const MeshState& s) {
     const std::array<Index, 4> ids{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(),
                                    c->vertex(3)->info()};
     const double angle = cell_min_dihedral_deg(s, c);
-    if (angle < s.options.sliver_angle_deg && !tet_touches_acute_angle(s, ids)) bad.push_back({angle, ids});
+    if (s.params.below_sliver_angle(angle) && !tet_touches_acute_angle(s, ids)) bad.push_back({angle, ids});
   }
   std::sort(bad.begin(), bad.end(),
             [](const Bad& a, const Bad& b) { return a.angle < b.angle || (a.angle == b.angle && a.ids < b.ids); });
@@ -285,12 +285,12 @@ Refusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std::size
   // The engine's insertion queued the zone's subsegments and subfacets whose diametral balls hold p (allowed above:
   // they stay edges and faces, checked) and, never expected, new cells that Rule 3 would split. Both are dropped:
   // the triangulation is weighted now, and the engine's rules are unweighted.
-  *num_in_balls += s.subsegment_queue.size() + s.subfacet_queue.size();
-  if (!s.tet_queue.empty())
-    s.log_line("sliver insertion: " + std::to_string(s.tet_queue.size()) + " new cells queued by Rule 3 (unexpected)");
-  s.subsegment_queue.clear();
-  s.subfacet_queue.clear();
-  s.tet_queue.clear();
+  *num_in_balls += s.rule1.queue.size() + s.rule2.queue.size();
+  if (!s.rule3.empty())
+    s.log_line("sliver insertion: " + std::to_string(s.rule3.queue.size()) + " new cells queued by Rule 3 (unexpected)");
+  s.rule1.queue.clear();
+  s.rule2.queue.clear();
+  s.rule3.queue.clear();
   star.push_back(w);
   pump_around(s, star);
   return Refusal::None;

@@ -359,4 +359,105 @@ void collect_subfacets(const MeshState& s, Index facet, std::vector<std::array<I
     if (f->info().in_domain()) out.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
 }
 
+Index face_subfacet(const MeshState& s, Ch3 c, int i) {
+  Index ids[3];
+  for (int k = 0; k < 3; ++k) {
+    ids[k] = c->vertex((i + 1 + k) & 3)->info();
+    if (ids[k] == kNoIndex) return kNoIndex;
+  }
+  return subfacet_of(s, ids[0], ids[1], ids[2]);
+}
+
+// --- After pumping (pump_star.cpp apply_weight) ---
+
+namespace {
+
+// Whether two sides of triangle (a, b, c) are subsegments of one segment: its vertices are consecutive on that
+// segment, hence collinear, whatever their rounded coordinates say.
+bool consecutive_on_a_segment(const MeshState& s, Index a, Index b, Index c) {
+  const auto middle = [&s](Index u, Index m, Index w) {
+    const Index seg = subsegment_of(s, u, m);
+    return seg != kNoIndex && subsegment_of(s, m, w) == seg;
+  };
+  return middle(a, b, c) || middle(b, c, a) || middle(c, a, b);
+}
+
+}  // namespace
+
+// After a move that changed subfacets (StarEvaluator::lost_subfacets): flips the 2D triangulation of each such
+// facet F to the new star. Raising v's weight lowers v's lifted point, so, as for an insertion, the 2D weighted
+// Delaunay triangulation of F's vertices is reached by flipping edges opposite v that are not locally regular; each
+// flip makes an edge vd that the 3D star has (the target). Returns false if some lost subfacet is left, or a
+// subfacet at v is no 3D face (a bug: the move was checked to retile F).
+bool retile_facets(MeshState& s, Index v, const std::vector<std::pair<Index, std::array<Index, 3>>>& lost) {
+  std::vector<Index> facets;
+  for (const auto& l : lost) facets.push_back(l.first);
+  std::sort(facets.begin(), facets.end());
+  facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
+  const Vh3 v3 = s.vertices[v].handle;
+  for (const Index facet : facets) {
+    FacetMesh& fm = s.facets[facet];
+    const Vh2 v2 = facet_vertex_handle(s, facet, v);
+    if (v2 == Vh2()) return false;
+    bool flipped = true;
+    for (int round = 0; flipped && round < 1000; ++round) {
+      flipped = false;
+      auto fc = fm.cdt.incident_faces(v2), done = fc;
+      do {
+        Fh2 fh = fc;
+        if (fm.cdt.is_infinite(fh) || !fh->info().in_domain()) continue;
+        const int i = fh->index(v2);
+        if (fh->is_constrained(i)) continue;
+        const Fh2 g = fh->neighbor(i);
+        if (fm.cdt.is_infinite(g) || !g->info().in_domain()) continue;
+        const Vh2 d = g->vertex(fm.cdt.mirror_index(fh, i));
+        const Vh2 x = fh->vertex(Cdt2::ccw(i)), y = fh->vertex(Cdt2::cw(i));
+        Ch3 cell;
+        int i0 = 0, i1 = 0;
+        if (!s.tr.is_edge(v3, s.vertices[d->info()].handle, cell, i0, i1)) continue;
+        // xy crosses vd: the quadrilateral v x d y is strictly convex.
+        const auto o1 = CGAL::orientation(x->point(), y->point(), v2->point());
+        const auto o2 = CGAL::orientation(x->point(), y->point(), d->point());
+        const auto o3 = CGAL::orientation(v2->point(), d->point(), x->point());
+        const auto o4 = CGAL::orientation(v2->point(), d->point(), y->point());
+        if (o1 == CGAL::COLLINEAR || o2 == CGAL::COLLINEAR || o1 == o2 || o3 == CGAL::COLLINEAR ||
+            o4 == CGAL::COLLINEAR || o3 == o4)
+          continue;
+        // The 2D points are rounded projections, so three consecutive vertices of one segment may pass the test
+        // above, and the 3D triangulation can have the edge vd over a flat triangle of them (outside the domain).
+        // Symbolically such a quadrilateral is not convex: the flip would make a triangle of collinear vertices.
+        if (consecutive_on_a_segment(s, v, x->info(), d->info()) ||
+            consecutive_on_a_segment(s, v, d->info(), y->info()))
+          continue;
+        const FaceInfo2 info = fh->info();
+        fm.cdt.flip(fh, i);
+        auto nc = fm.cdt.incident_faces(v2), ndone = nc;
+        do {
+          const Fh2 f = nc;
+          if (!fm.cdt.is_infinite(f) && f->has_vertex(d)) f->info() = info;
+        } while (++nc != ndone);
+        flipped = true;
+        break;  // the circulator is stale
+      } while (++fc != done);
+    }
+  }
+  for (const auto& l : lost)
+    if (is_subfacet(s, l.first, l.second[0], l.second[1], l.second[2])) return false;
+  // And every subfacet at v on those facets is a face of the 3D triangulation.
+  for (const Index facet : facets) {
+    const FacetMesh& fm = s.facets[facet];
+    const Vh2 v2 = facet_vertex_handle(s, facet, v);
+    auto fc = fm.cdt.incident_faces(v2), done = fc;
+    do {
+      if (fm.cdt.is_infinite(fc) || !fc->info().in_domain()) continue;
+      Ch3 cell;
+      int i, j, k;
+      if (!s.tr.is_facet(s.vertices[fc->vertex(0)->info()].handle, s.vertices[fc->vertex(1)->info()].handle,
+                         s.vertices[fc->vertex(2)->info()].handle, cell, i, j, k))
+        return false;
+    } while (++fc != done);
+  }
+  return true;
+}
+
 }  // namespace qualmesh::detail

@@ -1,0 +1,51 @@
+// RefineParams::from and the encroachment policy (refine_params.h).
+#include "refine/refine_params.h"
+
+#include <cmath>
+
+#include "refine/refine_state.h"
+
+namespace qualmesh::detail {
+
+RefineParams RefineParams::from(const MeshOptions& options) {
+  RefineParams p;
+  p.radius_edge_bound = options.radius_edge_bound;
+  p.sq_max_edge = options.max_edge_length > 0 ? options.max_edge_length * options.max_edge_length : 0;
+  p.max_volume = options.max_volume > 0 ? options.max_volume : 0;
+  p.sliver_angle_deg = options.sliver_angle_deg;
+  p.sq_omega = options.omega * options.omega;
+  p.sq_delta = options.delta * options.delta;
+  p.max_vertices = options.max_vertices;
+  p.encroachment = EncroachmentPolicy(options.encroaching);
+  return p;
+}
+
+double RefineParams::weight_cap(double f, double sq_nearest, bool* by_omega) const {
+  double cap = sq_delta * sq_nearest;
+  const bool omega_smaller = std::isfinite(f) && omega_cap(f) < cap;
+  if (omega_smaller) cap = omega_cap(f);
+  if (by_omega) *by_omega = omega_smaller;
+  return cap;
+}
+
+namespace {
+
+bool segments_share_endpoint(const MeshState& s, Index s1, Index s2) {
+  const Segment& a = s.complex.segments[s1];
+  const Segment& b = s.complex.segments[s2];
+  return a.a == b.a || a.a == b.b || a.b == b.a || a.b == b.b;
+}
+
+}  // namespace
+
+bool EncroachmentPolicy::counts(const MeshState& s, Index v, Index segment) const {
+  if (paper()) return true;
+  const VertexRecord& r = s.vertices[v];
+  if (r.kind == VertexKind::Input) return false;
+  if (segment != kNoIndex && r.kind == VertexKind::Segment && r.host != segment &&
+      segments_share_endpoint(s, r.host, segment))
+    return false;
+  return true;
+}
+
+}  // namespace qualmesh::detail

@@ -1,0 +1,85 @@
+// Rule 1 of QUALMESH (Cheng & Dey, Section 3.7, step 2): split a subsegment that is encroached (a vertex strictly
+// inside its diametral ball, Section 3.2) or missing from the triangulation. The split point is the midpoint, or,
+// next to an acute input vertex (beyond the paper, which assumes none), Shewchuk's concentric-shell point
+// (subsegments.cpp subsegment_split_parameter), so that segments meeting at a small angle stop encroaching each
+// other. Rules 2 and 3 hand this level the subsegments their rejected centres encroach (forced entries); Rule 4
+// those a weighted vertex encroaches (rule4.cpp). Which vertices encroach a present subsegment is the policy's
+// (EncroachmentPolicy: the paper's "every vertex", or Steiner vertices only).
+//
+// A subsegment's split point is never rejected (Rule 1 is the first level): its conflict test only drops a point
+// that rounding put on a vertex. Entries are checked when popped (still consecutive on the segment, still
+// encroached or forced), so stale ones cost nothing.
+#include <algorithm>
+
+#include "refine/refine_state.h"
+
+namespace qualmesh::detail {
+
+bool Rule1Subsegments::encroached(const MeshState& s, Index segment, Index u, Index v, Index* encroacher) const {
+  const Vh3 hu = s.vertices[u].handle, hv = s.vertices[v].handle;
+  Ch3 c;
+  int i = 0, j = 0;
+  *encroacher = kNoIndex;
+  if (!s.tr.is_edge(hu, hv, c, i, j)) return true;
+  const KPoint3 a = s.kpoint(u), b = s.kpoint(v);
+  auto cc = s.tr.incident_cells(c, i, j), done = cc;
+  do {
+    for (int k = 0; k < 4; ++k) {
+      const Vh3 w = cc->vertex(k);
+      if (w == hu || w == hv || w == s.tr.infinite_vertex() || !policy.counts(s, w->info(), segment)) continue;
+      if (strictly_encroaches(a, b, s.kpoint(w->info()))) {
+        *encroacher = w->info();
+        return true;
+      }
+    }
+  } while (++cc != done);
+  return false;
+}
+
+void Rule1Subsegments::enqueue_if_encroached(MeshState& s, Index segment, Index u, Index v) {
+  Index enc;
+  if (encroached(s, segment, u, v, &enc)) push({segment, u, v});
+}
+
+Point3 Rule1Subsegments::refinement_point(const MeshState& s, Index segment, Index u, Index v, double* t) const {
+  *t = subsegment_split_parameter(s, segment, u, v);
+  const Segment& sg = s.complex.segments[segment];
+  const Point3& a = s.point(sg.a);
+  const Point3& b = s.point(sg.b);
+  return {a[0] + *t * (b[0] - a[0]), a[1] + *t * (b[1] - a[1]), a[2] + *t * (b[2] - a[2])};
+}
+
+Conflict Rule1Subsegments::conflict(MeshState& s, const Point3& p, Ch3 hint, ConflictZone& cz) const {
+  return find_conflict_zone(s, to_kpoint(p), hint, cz) ? Conflict::None : Conflict::Drop;  // Drop: underflow
+}
+
+void Rule1Subsegments::refine_one(MeshState& s) {
+  const SubsegmentEntry e = queue.front();
+  queue.pop_front();
+  if (subsegment_of(s, e.u, e.v) != e.segment) return;  // stale
+  Index enc = kNoIndex;
+  if (!e.forced && !encroached(s, e.segment, e.u, e.v, &enc)) return;
+  double t = 0;
+  const Point3 p = refinement_point(s, e.segment, e.u, e.v, &t);
+  ConflictZone cz;
+  if (conflict(s, p, hint_of(s, e.u), cz) != Conflict::None) return;
+  Candidates cand;
+  collect_candidates(s, cz, cand);
+  const Index w = add_vertex(s, p, VertexKind::Segment, e.segment, t);
+  link_segment_vertex(s, e.segment, e.u, e.v, w);
+  ++s.stats.num_rule1_insertions;
+  notify_insertion(s, insert_vertex(s, w, cz, cand, kUnknownRegion));
+}
+
+void Rule1Subsegments::after_insertion(MeshState& s, const InsertionResult& r) {
+  const KPoint3 p = s.kpoint(r.vertex);
+  for (std::size_t n = 0; n < r.zone_subsegments.size(); ++n) {
+    const auto& e = r.zone_subsegments[n];  // e[1] < e[2]
+    if (subsegment_of(s, e[1], e[2]) != e[0]) continue;
+    if (!r.zone_subsegment_kept[n] || strictly_encroaches(s.kpoint(e[1]), s.kpoint(e[2]), p))
+      push({e[0], e[1], e[2]});
+  }
+  for (const auto& e : r.new_subsegments) enqueue_if_encroached(s, e[0], e[1], e[2]);
+}
+
+}  // namespace qualmesh::detail
