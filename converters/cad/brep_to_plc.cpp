@@ -1,5 +1,9 @@
-// B-rep to PLC (third stage of the CAD front end): tessellates the curved faces with OpenCASCADE's BRepMesh and
-// writes the piecewise linear complex the mesher consumes.
+// B-rep to PLC (third stage of the CAD front end): meshes the faces and writes the piecewise linear complex the
+// mesher consumes. Two ways (CadOptions::surface_mesh):
+//  - Sized (default): the size field (size_field.h) sets a length per CAD edge and face; every edge is discretised
+//    once uniformly at its size, planar faces are their wire polygons, curved faces are meshed by Delaunay
+//    refinement on the surface (face_mesh.h), every node on the CAD surface.
+//  - Tessellation: OpenCASCADE's BRepMesh at the chordal deflection, described below.
 //
 // Conformity between faces is by construction, not by tolerance: every CAD edge is discretised once (BRepMesh
 // shares an edge's polygon between the faces that use it) and its vertex chain is given PLC vertex ids once; every
@@ -11,6 +15,7 @@
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
@@ -38,6 +43,8 @@
 #include <map>
 
 #include "cad_private.h"
+#include "face_mesh.h"
+#include "size_field.h"
 #include "qualmesh/error.h"
 
 namespace qualmesh::cad {
@@ -51,6 +58,12 @@ constexpr double kPlanarityTolerance = 1e-7;
 // so a polygon whose vertices stray by more (Zylkopf.stp: 1e-8 of the diagonal, healed edges) gives boundary faces
 // off their facet; such a face uses its triangles instead, each planar by construction.
 constexpr double kPolygonPlanarityTolerance = 1e-11;
+// Sized surface mesh: relative deflection of the coarse BRepMesh run whose triangles seed the region search only.
+constexpr double kSeedRelativeDeflection = 0.005;
+// Sized surface mesh: rounds of edge splits asked by the curved faces' refinement, and the shortest piece split
+// (relative to the face's size).
+constexpr int kMaxSplitPasses = 6;
+constexpr double kMinSplitFactor = 0.15;
 
 Point3 to_point(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 
@@ -75,6 +88,7 @@ class PlcBuilder {
     summary.num_edges = edges_.Extent();
     summary.num_vertices = vertices_.Extent();
     model_.plc.name = file_;
+    if (options_.surface_mesh == CadSurfaceMesh::Sized) return convert_sized();
 
     tessellate();
     assign_face_sides();
@@ -87,11 +101,121 @@ class PlcBuilder {
   }
 
  private:
-  void tessellate() {
+  // The sized surface mesh (face_mesh.h): edges at the size field, planar faces as polygons, curved faces refined
+  // on their surface. BRepMesh still runs, coarsely, for the triangles add_regions() starts its seed search from.
+  CadModel convert_sized() {
+    tessellate(kSeedRelativeDeflection);
+    seed_deflection_ = model_.summary.deflection_used;
+    assign_face_sides();
+    vertex_ids_.assign(vertices_.Extent() + 1, kNoIndex);
+    edge_chains_.assign(edges_.Extent() + 1, {});
+    edge_params_.assign(edges_.Extent() + 1, {});
+    const SizeField field(solids_, faces_, edges_, options_, diagonal_, file_);
+    model_.summary.size_used = field.target();
+    for (int e = 1; e <= edges_.Extent(); ++e) {
+      const TopoDS_Edge edge = TopoDS::Edge(edges_(e).Oriented(TopAbs_FORWARD));
+      TopoDS_Vertex first, last;
+      TopExp::Vertices(edge, first, last);
+      if (BRep_Tool::Degenerated(edge)) continue;  // a pole: its faces give it points in (u, v) only
+      std::vector<double> params = discretise_edge(edge, field.edge_size(e));
+      BRepAdaptor_Curve curve(edge);
+      std::vector<Index>& chain = edge_chains_[e];
+      chain.push_back(vertex_id(first));
+      for (std::size_t i = 1; i + 1 < params.size(); ++i) chain.push_back(add_vertex(to_point(curve.Value(params[i]))));
+      chain.push_back(vertex_id(last));
+      edge_params_[e] = std::move(params);
+    }
+    mesh_sized_faces(field);
+    add_segments();
+    add_regions();
+    return std::move(model_);
+  }
+
+  // Curved faces are meshed, the edge pieces their refinement needs split are split (Chew's rule across faces: the
+  // chain is shared, so every face using the edge sees the new point), and the curved faces meshed again, until no
+  // piece is asked for (at most kMaxSplitPasses); then every face becomes its facets, in face order.
+  void mesh_sized_faces(const SizeField& field) {
+    const int num_faces = faces_.Extent();
+    std::vector<char> planar(num_faces + 1, 0);
+    for (int f = 1; f <= num_faces; ++f)
+      planar[f] = BRepAdaptor_Surface(TopoDS::Face(faces_(f)), Standard_False).GetType() == GeomAbs_Plane;
+    std::vector<std::vector<SurfaceTriangle>> triangles(num_faces + 1);
+    std::vector<FaceMeshStats> stats(num_faces + 1);
+    std::vector<Point3>& vertices = model_.plc.vertices;
+    for (int pass = 0;; ++pass) {
+      const std::size_t boundary_end = vertices.size();
+      std::vector<EdgeSplit> splits;
+      for (int f = 1; f <= num_faces; ++f) {
+        if (planar[f]) continue;
+        stats[f] = {};
+        triangles[f] = mesh_face_on_surface(f, field, stats[f]);
+        splits.insert(splits.end(), stats[f].splits.begin(), stats[f].splits.end());
+      }
+      std::sort(splits.begin(), splits.end());
+      splits.erase(std::unique(splits.begin(), splits.end()), splits.end());
+      if (splits.empty() || pass + 1 >= kMaxSplitPasses) break;
+      vertices.resize(boundary_end);  // the faces' interior nodes go; they are made again
+      for (auto it = splits.rbegin(); it != splits.rend(); ++it) {  // from the back: indices stay valid
+        std::vector<Index>& chain = edge_chains_[it->edge_number];
+        std::vector<double>& params = edge_params_[it->edge_number];
+        const double t = 0.5 * (params[it->index] + params[it->index + 1]);
+        const BRepAdaptor_Curve curve(TopoDS::Edge(edges_(it->edge_number).Oriented(TopAbs_FORWARD)));
+        chain.insert(chain.begin() + it->index + 1, add_vertex(to_point(curve.Value(t))));
+        params.insert(params.begin() + it->index + 1, t);
+      }
+    }
+    std::vector<double> tolerances(num_faces + 1, 0);
+    double max_chord_error = 0;
+    for (int f = 1; f <= num_faces; ++f) {
+      const TopoDS_Face face = TopoDS::Face(faces_(f).Oriented(TopAbs_FORWARD));
+      double base_tolerance = BRep_Tool::Tolerance(face);
+      for (TopExp_Explorer it(face, TopAbs_EDGE); it.More(); it.Next())
+        base_tolerance = std::max(base_tolerance, BRep_Tool::Tolerance(face) + BRep_Tool::Tolerance(TopoDS::Edge(it.Current())));
+      if (planar[f] && add_planar_face(face, f)) {
+        tolerances[f] = base_tolerance;
+        continue;
+      }
+      if (planar[f]) triangles[f] = mesh_face_on_surface(f, field, stats[f]);  // a plane face that is no polygon
+      if (triangles[f].empty())
+        throw InputError(ErrorCode::DegenerateFacet, "Face" + std::to_string(f) + " gave no triangle", file_);
+      for (const SurfaceTriangle& t : triangles[f]) {
+        Facet facet;
+        facet.polygons.push_back(face_reversed_[f] ? std::vector<Index>{t[0], t[2], t[1]}
+                                                   : std::vector<Index>{t[0], t[1], t[2]});
+        facet.marker = f;
+        model_.plc.facets.push_back(std::move(facet));
+      }
+      // Nodes are on the surface; the facets between them within the chordal error (sampled at the centroids, so
+      // twice that is claimed, as for BRepMesh's deflection).
+      tolerances[f] = 2 * stats[f].max_chord_error + base_tolerance;
+      max_chord_error = std::max(max_chord_error, stats[f].max_chord_error);
+    }
+    model_.summary.face_tolerances.assign(tolerances.begin() + 1, tolerances.end());
+    model_.summary.deflection_used = max_chord_error;
+    region_margin_ = 2 * std::max(max_chord_error, seed_deflection_);
+  }
+
+  std::vector<SurfaceTriangle> mesh_face_on_surface(int f, const SizeField& field, FaceMeshStats& stats) {
+    const TopoDS_Face face = TopoDS::Face(faces_(f).Oriented(TopAbs_FORWARD));
+    return mesh_curved_face(
+        face, f, field.face_size(f), kMinSplitFactor * field.face_size(f),
+        [this](const TopoDS_Edge& edge) -> const EdgeChain& {
+          const int e = edges_.FindIndex(edge);
+          scratch_chain_.edge_number = e;
+          scratch_chain_.ids = edge_chains_[e];
+          scratch_chain_.params = edge_params_[e];
+          return scratch_chain_;
+        },
+        [this](const TopoDS_Vertex& v) { return vertex_id(v); }, model_.plc.vertices, file_, stats);
+  }
+
+  void tessellate(double relative_deflection = -1) {
     Bnd_Box box;
     BRepBndLib::Add(shape_, box);
     diagonal_ = std::sqrt(box.SquareExtent());
-    double deflection = options_.deflection > 0 ? options_.deflection : options_.relative_deflection * diagonal_;
+    double deflection = relative_deflection > 0 ? relative_deflection * diagonal_
+                        : options_.deflection > 0 ? options_.deflection
+                                                  : options_.relative_deflection * diagonal_;
     if (!(deflection > 0)) throw InputError(ErrorCode::Empty, "the CAD model has zero size", file_);
     model_.summary.deflection_used = deflection;
     IMeshTools_Parameters parameters;
@@ -436,7 +560,7 @@ class PlcBuilder {
       intersector.Load(solid, 1e-9 * diagonal_);
       BRepClass3d_SolidClassifier classifier(solid);
       bool found = false;
-      const double margin = 2 * model_.summary.deflection_used;
+      const double margin = region_margin_ > 0 ? region_margin_ : 2 * model_.summary.deflection_used;
       const std::size_t tries = std::min<std::size_t>(candidates.size(), 200);
       for (std::size_t k = 0; k < tries && !found; ++k) {
         const Candidate& c = candidates[k];
@@ -467,6 +591,10 @@ class PlcBuilder {
   std::vector<bool> face_reversed_;               // by face number: REVERSED in its first solid
   std::vector<Index> vertex_ids_;                 // by CAD vertex number
   std::vector<std::vector<Index>> edge_chains_;   // by CAD edge number
+  std::vector<std::vector<double>> edge_params_;  // Sized: curve parameters of the chain's points, by edge number
+  EdgeChain scratch_chain_;                       // Sized: the chain handed to the face mesher
+  double region_margin_ = 0;                      // Sized: distance a region seed keeps from the walls
+  double seed_deflection_ = 0;                    // Sized: deflection of the coarse BRepMesh run for the seeds
   double diagonal_ = 0;
   CadModel model_;
 };

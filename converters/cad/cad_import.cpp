@@ -1,11 +1,12 @@
 // Entry point of the CAD and OpenSCAD front end (cad_import.h): picks the reader by file extension and runs the
-// stages read -> heal -> PLC (see cad_private.h).
+// stages read -> heal -> PLC (see cad_private.h), and checks a sized surface mesh (validate_plc) before it goes out.
 #include "qualmesh/cad_import.h"
 
 #include <TopoDS_Shape.hxx>
 
 #include "cad_private.h"
 #include "qualmesh/error.h"
+#include "qualmesh/plc_validate.h"
 
 namespace qualmesh {
 
@@ -65,6 +66,22 @@ CadModel read_cad(const std::string& path, const CadOptions& options) {
   std::vector<std::string> log;
   const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/false);
   CadModel model = cad::convert_solids_to_plc(solids, options, path);
+  if (options.surface_mesh == CadSurfaceMesh::Sized) {
+    // The sized surface mesh must be a valid PLC; where it is not (two curved faces' triangles cross where the
+    // faces nearly touch, more than their chordal error apart from the CAD), the model is tessellated as before,
+    // keeping the size for the volume mesh, and the summary says why.
+    const ValidationReport report = validate_plc(model.plc);
+    if (!report.ok()) {
+      CadOptions fallback = options;
+      fallback.surface_mesh = CadSurfaceMesh::Tessellation;
+      const double size = model.summary.size_used;
+      const std::string why = report.problems.front().message;
+      model = cad::convert_solids_to_plc(solids, fallback, path);
+      model.summary.size_used = size;
+      model.summary.surface_fallback = "the sized surface mesh is no valid PLC (" + why +
+                                       "): curved faces tessellated at the chordal deflection instead";
+    }
+  }
   model.summary.source_format = cad::cad_format(path);
   model.summary.healing_log.insert(model.summary.healing_log.begin(), log.begin(), log.end());
   return model;

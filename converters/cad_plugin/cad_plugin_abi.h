@@ -5,7 +5,8 @@
 // Private to converters/: the CLI and the plugin are built together from one source tree by one compiler against one
 // libstdc++, so C++ objects (Plc, std::string, std::vector) pass by pointer. The entry point is extern "C" and its
 // name carries the interface version: change any type below (or what the plugin does with it) and bump the version,
-// so that a stale plugin fails to load by name instead of misreading memory.
+// so that a stale plugin fails to load by name instead of misreading memory. v2: CadOptions carries the size field
+// (size, min_size, curvature_elements, gradation, local_sizes, surface_mesh) and LoadResult the size used.
 #pragma once
 
 #include <string>
@@ -20,10 +21,10 @@ namespace qualmesh::cad_plugin {
 // File name of the plugin, looked for next to the executable (see cad_plugin_loader.h for the search order).
 inline constexpr const char* kPluginFileName = "libqualmesh_cad_plugin.so";
 // Name of the entry point (load_cad_fn) in the plugin.
-inline constexpr const char* kLoadCadSymbol = "qualmesh_cad_plugin_load_cad_v1";
+inline constexpr const char* kLoadCadSymbol = "qualmesh_cad_plugin_load_cad_v2";
 // Names of the other entry points: fit_mesh_to_cad (FitMeshFn), measure_against_cad (MeasureFn).
-inline constexpr const char* kFitMeshSymbol = "qualmesh_cad_plugin_fit_mesh_v1";
-inline constexpr const char* kMeasureSymbol = "qualmesh_cad_plugin_measure_v1";
+inline constexpr const char* kFitMeshSymbol = "qualmesh_cad_plugin_fit_mesh_v2";
+inline constexpr const char* kMeasureSymbol = "qualmesh_cad_plugin_measure_v2";
 
 enum class LoadStatus : int {
   Ok = 0,             // plc and notes are filled
@@ -37,6 +38,7 @@ struct LoadResult {
   LoadStatus status = LoadStatus::InternalError;
   Plc plc;                         // Ok: the model's PLC (read_cad's CadModel::plc)
   std::vector<std::string> notes;  // Ok: summary lines (format, solids and their volumes, deflection, healing)
+  double size_used = 0;            // Ok: CadSummary::size_used (the sized surface mesh's target edge length)
   int error_code = 0;              // InputError: static_cast<int>(ErrorCode)
   std::string message;             // InputError: InputError::message(); InternalError: what()
   std::string file;                // InputError: InputError::file()

@@ -24,7 +24,16 @@ std::vector<std::string> summary_notes(const CadSummary& s) {
     std::snprintf(line, sizeof line, "Solid%zu: volume %.10g", i + 1, s.solid_volumes[i]);
     notes.push_back(line);
   }
-  if (s.deflection_used > 0) {
+  if (!s.surface_fallback.empty()) {
+    std::snprintf(line, sizeof line, "curved faces tessellated with chordal deflection %.4g (target edge length %.4g)",
+                  s.deflection_used, s.size_used);
+    notes.push_back(line);
+    notes.push_back("note: " + s.surface_fallback);
+  } else if (s.size_used > 0) {
+    std::snprintf(line, sizeof line, "sized surface mesh: target edge length %.4g, largest chordal error %.4g",
+                  s.size_used, s.deflection_used);
+    notes.push_back(line);
+  } else if (s.deflection_used > 0) {
     std::snprintf(line, sizeof line, "curved faces tessellated with chordal deflection %.4g", s.deflection_used);
     notes.push_back(line);
   }
@@ -66,30 +75,31 @@ void guarded(LoadResult* result, Work&& work) noexcept {
 }  // namespace
 }  // namespace qualmesh::cad_plugin
 
-extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_load_cad_v1(
+extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_load_cad_v2(
     const char* path, const qualmesh::CadOptions* options, qualmesh::cad_plugin::LoadResult* result) noexcept {
   using namespace qualmesh;
   // Checked against the declaration the CLI uses: a changed signature must change the versioned name too.
-  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_load_cad_v1), cad_plugin::LoadCadFn>);
+  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_load_cad_v2), cad_plugin::LoadCadFn>);
   cad_plugin::guarded(result, [&] {
     CadModel model = read_cad(path, *options);
     result->notes = cad_plugin::summary_notes(model.summary);
+    result->size_used = model.summary.size_used;
     result->plc = std::move(model.plc);
   });
 }
 
-extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_fit_mesh_v1(
+extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_fit_mesh_v2(
     const char* path, const qualmesh::CadOptions* options, const qualmesh::CadFitOptions* fit_options,
     qualmesh::TetMesh* mesh, qualmesh::cad_plugin::FitResult* result) noexcept {
   using namespace qualmesh;
-  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_fit_mesh_v1), cad_plugin::FitMeshFn>);
+  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_fit_mesh_v2), cad_plugin::FitMeshFn>);
   cad_plugin::guarded(&result->outcome, [&] { result->report = fit_mesh_to_cad(path, *options, *mesh, *fit_options); });
 }
 
-extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_measure_v1(
+extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_measure_v2(
     const char* path, const qualmesh::CadOptions* options, const qualmesh::TetMesh* mesh,
     qualmesh::cad_plugin::MeasureResult* result) noexcept {
   using namespace qualmesh;
-  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_measure_v1), cad_plugin::MeasureFn>);
+  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_measure_v2), cad_plugin::MeasureFn>);
   cad_plugin::guarded(&result->outcome, [&] { result->conformity = measure_against_cad(path, *options, *mesh); });
 }

@@ -101,12 +101,14 @@ void rethrow(cad_plugin::LoadResult& result) {
 
 }  // namespace
 
-Plc read_cad_through_plugin(const std::string& path, const CadOptions& options, std::vector<std::string>* notes) {
+Plc read_cad_through_plugin(const std::string& path, const CadOptions& options, std::vector<std::string>* notes,
+                            double* size_used) {
   const PluginHandle& plugin = plugin_or_throw(path);
   cad_plugin::LoadResult result;
   plugin.load_cad(path.c_str(), &options, &result);
   rethrow(result);
   if (notes) notes->insert(notes->end(), result.notes.begin(), result.notes.end());
+  if (size_used) *size_used = result.size_used;
   return std::move(result.plc);
 }
 

@@ -16,11 +16,13 @@
 
 namespace qualmesh::cli {
 
-// read_cad(path, options) through the plugin; appends the summary lines to *notes when notes is given.
+// read_cad(path, options) through the plugin; appends the summary lines to *notes when notes is given, and stores
+// the sized surface mesh's target edge length (CadSummary::size_used, 0 for a tessellation) in *size_used when given.
 // Throws InputError: read_cad's own, rebuilt field by field (same what()), or ErrorCode::Unsupported naming the paths
 // tried when the plugin cannot be loaded. Throws std::bad_alloc, or std::runtime_error with the plugin's what() for
 // an internal error.
-Plc read_cad_through_plugin(const std::string& path, const CadOptions& options, std::vector<std::string>* notes);
+Plc read_cad_through_plugin(const std::string& path, const CadOptions& options, std::vector<std::string>* notes,
+                            double* size_used = nullptr);
 
 // fit_mesh_to_cad(path, options, mesh, fit_options) through the plugin (same errors as read_cad_through_plugin).
 CadFitReport fit_mesh_through_plugin(const std::string& path, const CadOptions& options,

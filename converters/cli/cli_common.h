@@ -33,13 +33,23 @@ struct InputOptions {
   bool keep_triangles = false;       // surface inputs: do not merge coplanar triangles into polygonal facets
   double deflection = 0;             // CAD: absolute chordal deflection of curved faces (0 = relative)
   double relative_deflection = 0.001;  // CAD: deflection relative to the bounding-box diagonal
+  // CAD size field (CadOptions; model units): --size, --min-size, --curvature, --gradation, --local-size NAME=H,
+  // --cad-surface sized|tessellation.
+  double size = 0;                   // 0 = default (a tenth of the bounding-box diagonal)
+  double min_size = 0;               // 0 = default (a 30th of the size)
+  double curvature = 12;             // elements per full circle; 0 disables
+  double gradation = 0;              // 0 = none
+  std::vector<std::string> local_sizes;  // "Face3=0.5", "Edge5=0.2", "Solid2=1" (checked at parse time)
+  CadSurfaceMesh cad_surface = CadSurfaceMesh::Sized;
 };
 void add_input_options(CLI::App& command, InputOptions& options);
 
 // Reads any input model the CLI accepts (PLC formats; CAD and OpenSCAD formats when built with the CAD front end)
-// into a Plc. When `notes` is given, lines describing the source (CAD solids, faces, edges, healing) are appended.
+// into a Plc. When `notes` is given, lines describing the source (CAD solids, faces, edges, healing) are appended;
+// when `cad_size_used` is given, it receives a CAD input's target edge length (CadSummary::size_used; else 0).
 // Throws InputError.
-Plc load_input(const std::string& path, const InputOptions& options, std::vector<std::string>* notes = nullptr);
+Plc load_input(const std::string& path, const InputOptions& options, std::vector<std::string>* notes = nullptr,
+               double* cad_size_used = nullptr);
 
 // True for the inputs load_input reads through the CAD front end (.step .stp .iges .igs .brep .brp .fcstd .scad).
 bool is_cad_input(const std::string& path);

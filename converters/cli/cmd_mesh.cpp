@@ -75,7 +75,9 @@ int run_mesh(MeshArgs& args) {
   if (args.no_pump) args.options.pump = false;
   if (args.no_sliver_insertion) args.options.sliver_insertion = false;
   if (args.no_improve) args.options.improve = false;
-  const Plc plc = load_input(args.input, args.input_options);
+  double cad_size = 0;  // a CAD input's target edge length (--size or its default): the engine's longest edge too
+  const Plc plc = load_input(args.input, args.input_options, nullptr, &cad_size);
+  if (cad_size > 0 && !(args.options.max_edge_length > 0)) args.options.max_edge_length = cad_size;
   if (!check_mesh_input(plc, args.input, args.options, args.verbose)) return kExitBadInput;  // as `info` validates
   if (!check_size_estimate(plc, args.input, args.options, args.limits)) return kExitResource;  // mesh_limits.h
   args.options.cancel = make_cancel(args.limits);
@@ -166,7 +168,8 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
   add_input_options(*command, args->input_options);
   command->add_option("--radius-edge", args->options.radius_edge_bound,
                       "Radius-edge ratio bound rho0 (default 2.0)");
-  command->add_option("--max-edge", args->options.max_edge_length, "Longest edge allowed (default: none)");
+  command->add_option("--max-edge", args->options.max_edge_length,
+                      "Longest edge allowed (default: none; for CAD inputs the --size, or its default)");
   command->add_option("--max-volume", args->options.max_volume, "Largest tetrahedron volume (default: none)");
   command->add_option("--max-vertices", args->options.max_vertices, "Safety stop (default 50,000,000)");
   command->add_option("--sliver-angle", args->options.sliver_angle_deg,

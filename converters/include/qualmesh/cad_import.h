@@ -5,8 +5,9 @@
 // What the PLC carries (numbers are 1-based and follow FreeCAD's naming, i.e. TopExp::MapShapes order of the healed
 // shape: Face<i>, Edge<i>, Solid<i>):
 //  - a planar CAD face is one polygonal facet, exact: its outer wire and inner wires are polygons (an inner loop is a
-//    hole by the odd-count rule of plc.h); a curved face is a set of triangular facets from OpenCASCADE's
-//    tessellation with the chordal deflection of CadOptions. Facet::marker = CAD face number.
+//    hole by the odd-count rule of plc.h); a curved face is a set of triangular facets, every node on the CAD
+//    surface, sized by CadOptions' size field (or, with CadSurfaceMesh::Tessellation, OpenCASCADE's tessellation
+//    with the chordal deflection of CadOptions). Facet::marker = CAD face number.
 //  - every CAD edge is discretised once, and every facet that uses the edge uses exactly that vertex chain; the
 //    chain's pieces are Plc segments with Segment::marker = CAD edge number (degenerate edges have none).
 //  - every solid gets a RegionSeed strictly inside it with attribute = solid number; a face shared by two solids
@@ -27,7 +28,39 @@
 
 namespace qualmesh {
 
+// A target edge length on one named CAD entity (FreeCAD's names: Face<id>, Edge<id>, Solid<id>, numbered as in
+// the PLC's markers and the output groups).
+struct CadLocalSize {
+  enum class Kind { Face, Edge, Solid };
+  Kind kind = Kind::Face;
+  int id = 0;        // 1-based
+  double size = 0;   // model units, > 0
+};
+
+// How the faces of a CAD model become the PLC's facets.
+enum class CadSurfaceMesh {
+  // Sized surface mesh (face_mesh.cpp): every CAD edge discretised at the size field, planar faces as exact
+  // polygons, curved faces as well-shaped triangles with every node on the CAD surface. The default.
+  Sized,
+  // OpenCASCADE's chordal tessellation (BRepMesh) at `deflection`: what QualMesh did before the size field.
+  Tessellation,
+};
+
 struct CadOptions {
+  CadSurfaceMesh surface_mesh = CadSurfaceMesh::Sized;
+  // Size field of the sized surface mesh (size_field.h; Gmsh's vocabulary). All lengths in model units.
+  // Target edge length (Gmsh's CharacteristicLengthMax); 0 = default: a tenth of the bounding-box diagonal (the size
+  // Gmsh gives a CAD vertex without a prescribed size).
+  double size = 0;
+  // Smallest edge length the curvature and thin-face refinement may ask for (CharacteristicLengthMin); 0 = a 30th
+  // of the target. Local sizes are not bounded by it.
+  double min_size = 0;
+  // Elements per full circle of a curved edge or face (Gmsh's MeshSizeFromCurvature): a face of radius R gets edges
+  // of at most 2 pi R / curvature_elements; 0 disables the curvature refinement.
+  double curvature_elements = 12;
+  // Largest ratio of the sizes of two CAD faces that share an edge (or a face and its edges); <= 1 disables.
+  double gradation = 0;
+  std::vector<CadLocalSize> local_sizes;  // the smallest size on an entity wins
   // Absolute chordal deflection for curved faces, in model units; 0 = derive it from relative_deflection.
   double deflection = 0;
   // Chordal deflection relative to the diagonal of the model's bounding box, used when deflection == 0.
@@ -58,7 +91,10 @@ struct CadSummary {
   // deflection used (OpenCASCADE controls the deflection at sample points only) plus the face's and its edges'
   // tolerances. Empty for .scad (the facets are the model).
   std::vector<double> face_tolerances;
-  double deflection_used = 0;  // absolute chordal deflection actually used, in model units
+  double deflection_used = 0;  // absolute chordal deflection actually used (Sized: largest measured), model units
+  double size_used = 0;        // Sized: the target edge length used (CadOptions::size or its default), model units
+  // Sized: non-empty when the sized surface mesh was refused by validate_plc and the model tessellated instead.
+  std::string surface_fallback;
   std::vector<std::string> healing_log;  // what was healed, one line per action (empty: nothing needed)
   std::string source_format;             // "STEP", "IGES", "BREP", "FCStd", "OpenSCAD"
 };

@@ -1,0 +1,176 @@
+// Size field of the sized CAD surface mesh (size_field.h).
+#include "size_field.h"
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
+#include <BRepLProp_CLProps.hxx>
+#include <BRepLProp_SLProps.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+
+#include <algorithm>
+#include <cmath>
+
+#include "qualmesh/error.h"
+
+namespace qualmesh::cad {
+
+namespace {
+
+constexpr int kSamples = 9;  // per parameter direction
+// Default smallest size, relative to the target: a hole of radius target/30 still gets about 6 segments.
+constexpr double kDefaultMinSizeFactor = 1.0 / 30;
+// Edge length on a narrow face relative to its width estimate 2 A / P.
+constexpr double kThinFaceFactor = 1.5;
+
+const char* kind_name(CadLocalSize::Kind kind) {
+  switch (kind) {
+    case CadLocalSize::Kind::Face: return "Face";
+    case CadLocalSize::Kind::Edge: return "Edge";
+    case CadLocalSize::Kind::Solid: return "Solid";
+  }
+  return "?";
+}
+
+// 2 pi / (k N): the edge length that puts N elements on a full circle of curvature k; +inf when not asked.
+double curvature_size(double curvature, double elements) {
+  if (!(elements > 0) || !(curvature > 0)) return HUGE_VAL;
+  return 2 * M_PI / (curvature * elements);
+}
+
+}  // namespace
+
+double max_face_curvature(const TopoDS_Face& face) {
+  BRepAdaptor_Surface surface(face, Standard_True);
+  if (surface.GetType() == GeomAbs_Plane) return 0;
+  switch (surface.GetType()) {  // exact for the analytic surfaces
+    case GeomAbs_Cylinder: return 1 / surface.Cylinder().Radius();
+    case GeomAbs_Sphere: return 1 / surface.Sphere().Radius();
+    case GeomAbs_Torus: return 1 / surface.Torus().MinorRadius();
+    default: break;
+  }
+  // Free-form faces: the upper quartile of the sampled curvatures, not their maximum, since one sample near a
+  // singular spot of a B-spline's parametrisation would set the size of the whole face.
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
+  BRepLProp_SLProps props(surface, 2, 1e-9);
+  std::vector<double> samples;
+  for (int i = 0; i < kSamples; ++i)
+    for (int j = 0; j < kSamples; ++j) {
+      const double u = u0 + (u1 - u0) * (i + 0.5) / kSamples, v = v0 + (v1 - v0) * (j + 0.5) / kSamples;
+      props.SetParameters(u, v);
+      if (!props.IsCurvatureDefined()) continue;
+      const double k = std::max(std::fabs(props.MaxCurvature()), std::fabs(props.MinCurvature()));
+      if (std::isfinite(k)) samples.push_back(k);
+    }
+  if (samples.empty()) return 0;
+  std::sort(samples.begin(), samples.end());
+  return samples[(samples.size() * 3) / 4];
+}
+
+double max_edge_curvature(const TopoDS_Edge& edge) {
+  if (BRep_Tool::Degenerated(edge)) return 0;
+  BRepAdaptor_Curve curve(edge);
+  switch (curve.GetType()) {
+    case GeomAbs_Line: return 0;
+    case GeomAbs_Circle: return 1 / curve.Circle().Radius();
+    default: break;
+  }
+  BRepLProp_CLProps props(curve, 2, 1e-9);
+  std::vector<double> samples;  // upper quartile, as for faces
+  const double t0 = curve.FirstParameter(), t1 = curve.LastParameter();
+  for (int i = 0; i <= 2 * kSamples; ++i) {
+    props.SetParameter(t0 + (t1 - t0) * i / (2 * kSamples));
+    if (props.IsTangentDefined() && std::isfinite(props.Curvature())) samples.push_back(std::fabs(props.Curvature()));
+  }
+  if (samples.empty()) return 0;
+  std::sort(samples.begin(), samples.end());
+  return samples[(samples.size() * 3) / 4];
+}
+
+SizeField::SizeField(const TopTools_IndexedMapOfShape& solids, const TopTools_IndexedMapOfShape& faces,
+                     const TopTools_IndexedMapOfShape& edges, const CadOptions& options, double diagonal,
+                     const std::string& file) {
+  target_ = options.size > 0 ? options.size : diagonal / 10;
+  min_size_ = options.min_size > 0 ? std::min(options.min_size, target_) : kDefaultMinSizeFactor * target_;
+  const int num_faces = faces.Extent(), num_edges = edges.Extent(), num_solids = solids.Extent();
+  std::vector<double> local_face(num_faces + 1, HUGE_VAL), local_edge(num_edges + 1, HUGE_VAL),
+      local_solid(num_solids + 1, HUGE_VAL);
+  for (const CadLocalSize& local : options.local_sizes) {
+    std::vector<double>& slot = local.kind == CadLocalSize::Kind::Face   ? local_face
+                                : local.kind == CadLocalSize::Kind::Edge ? local_edge
+                                                                         : local_solid;
+    if (local.id < 1 || local.id >= static_cast<int>(slot.size()))
+      throw InputError(ErrorCode::IndexOutOfRange,
+                       std::string("--local-size names ") + kind_name(local.kind) + std::to_string(local.id) +
+                           ", but the model has " + std::to_string(slot.size() - 1) + " " +
+                           kind_name(local.kind) + "s (numbered from 1)",
+                       file);
+    slot[local.id] = std::min(slot[local.id], local.size);
+  }
+  face_sizes_.assign(num_faces + 1, target_);
+  for (int f = 1; f <= num_faces; ++f) {
+    const TopoDS_Face face = TopoDS::Face(faces(f));
+    double h = std::min(target_, curvature_size(max_face_curvature(face), options.curvature_elements));
+    // A narrow face (a strip between two long edges, a thin fillet) gets edges no longer than about its width,
+    // 2 area / perimeter (the width of a long strip, the radius of a disc), so that its triangles are not needles.
+    GProp_GProps area, perimeter;
+    BRepGProp::SurfaceProperties(face, area);
+    BRepGProp::LinearProperties(face, perimeter);
+    if (perimeter.Mass() > 0 && area.Mass() > 0)
+      h = std::min(h, kThinFaceFactor * 2 * area.Mass() / perimeter.Mass());
+    h = std::max(h, min_size_);
+    h = std::min(h, local_face[f]);
+    face_sizes_[f] = h;
+  }
+  for (int s = 1; s <= num_solids; ++s) {
+    if (!std::isfinite(local_solid[s])) continue;
+    for (TopExp_Explorer it(solids(s), TopAbs_FACE); it.More(); it.Next()) {
+      const int f = faces.FindIndex(it.Current());
+      if (f > 0) face_sizes_[f] = std::min(face_sizes_[f], local_solid[s]);
+    }
+  }
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  for (int f = 1; f <= num_faces; ++f) TopExp::MapShapesAndAncestors(faces(f), TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  auto faces_of = [&](int e, auto&& visit) {
+    const int k = edge_faces.FindIndex(edges(e));
+    if (k == 0) return;
+    for (const TopoDS_Shape& face : edge_faces(k)) {
+      const int f = faces.FindIndex(face);
+      if (f > 0) visit(f);
+    }
+  };
+  // Gradation: the size of a face at most `gradation` times that of a face it shares an edge with.
+  if (options.gradation > 1) {
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (int e = 1; e <= num_edges; ++e) {
+        double smallest = HUGE_VAL;
+        faces_of(e, [&](int f) { smallest = std::min(smallest, face_sizes_[f]); });
+        faces_of(e, [&](int f) {
+          if (face_sizes_[f] > options.gradation * smallest * (1 + 1e-12)) {
+            face_sizes_[f] = options.gradation * smallest;
+            changed = true;
+          }
+        });
+      }
+    }
+  }
+  edge_sizes_.assign(num_edges + 1, target_);
+  for (int e = 1; e <= num_edges; ++e) {
+    const TopoDS_Edge edge = TopoDS::Edge(edges(e));
+    double h = std::max(min_size_, std::min(target_, curvature_size(max_edge_curvature(edge),
+                                                                     options.curvature_elements)));
+    faces_of(e, [&](int f) { h = std::min(h, face_sizes_[f]); });
+    edge_sizes_[e] = std::min(h, local_edge[e]);
+  }
+}
+
+}  // namespace qualmesh::cad
