@@ -65,20 +65,29 @@ CadModel read_cad(const std::string& path, const CadOptions& options) {
   if (ext == ".scad") return cad::read_scad_file(path, options);
   std::vector<std::string> log;
   const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/false);
-  CadModel model = cad::convert_solids_to_plc(solids, options, path);
+  CadModel model;
+  std::string why;  // why the sized surface mesh is not used
+  try {
+    model = cad::convert_solids_to_plc(solids, options, path);
+  } catch (const InputError& e) {
+    if (options.surface_mesh != CadSurfaceMesh::Sized) throw;
+    why = e.message();  // bottle.brep: no region seed clear of a thin wall by twice the chordal error
+  }
   if (options.surface_mesh == CadSurfaceMesh::Sized) {
     // The sized surface mesh must be a valid PLC; where it is not (two curved faces' triangles cross where the
-    // faces nearly touch, more than their chordal error apart from the CAD), the model is tessellated as before,
-    // keeping the size for the volume mesh, and the summary says why.
-    const ValidationReport report = validate_plc(model.plc);
-    if (!report.ok()) {
+    // faces nearly touch, more than their chordal error apart from the CAD), or where it could not be made, the
+    // model is tessellated as before, keeping the size for the volume mesh, and the summary says why.
+    if (why.empty()) {
+      const ValidationReport report = validate_plc(model.plc);
+      if (!report.ok()) why = report.problems.front().message;
+    }
+    if (!why.empty()) {
       CadOptions fallback = options;
       fallback.surface_mesh = CadSurfaceMesh::Tessellation;
-      const double size = model.summary.size_used;
-      const std::string why = report.problems.front().message;
+      const double size = model.summary.size_used > 0 ? model.summary.size_used : options.size;
       model = cad::convert_solids_to_plc(solids, fallback, path);
       model.summary.size_used = size;
-      model.summary.surface_fallback = "the sized surface mesh is no valid PLC (" + why +
+      model.summary.surface_fallback = "no sized surface mesh (" + why +
                                        "): curved faces tessellated at the chordal deflection instead";
     }
   }

@@ -6,13 +6,14 @@
 // Curved faces: Delaunay refinement in the parameter plane, with the quality measured in space (Chew's second
 // algorithm, "Guaranteed-quality mesh generation for curved surfaces", SoCG 1993, run on the surface through its
 // parametrisation). The boundary nodes (the edge chains, mapped into (u, v) by each edge's curve on the face, a seam
-// edge twice) are the constrained edges of a 2D constrained Delaunay triangulation of (su u, sv v), where su and sv
-// are the face's mean |dS/du| and |dS/dv| (exact isotropy on cylinders, a bounded stretch elsewhere). A triangle is
-// bad when its 3D circumradius exceeds kRadiusFactor * size or its smallest 3D angle is below kMinAngleDeg; its 3D
-// circumcentre is projected onto the surface (ShapeAnalysis_Surface, started at the triangle's centroid) and
-// inserted, unless it lies outside the face or in the diametral ball of a boundary edge of its conflict zone on the
-// face's border: the CAD edges are never split here, since their chains are shared with the neighbouring faces
-// (Chew's rule, without the split). New nodes are points of the surface, exactly.
+// edge twice) are the constrained edges of a 2D constrained Delaunay triangulation of the plane (s(u), t(v)), s and
+// t the face's mean arc length along u and v (exact isometry on cylinders, a bounded stretch on tori and cones, an
+// unbounded one at a sphere's poles). A triangle is bad when its 3D circumradius exceeds kRadiusFactor * size (its
+// 3D circumcentre, projected onto the surface by ShapeAnalysis_Surface from the triangle's centroid, is inserted) or
+// its smallest angle in the plane is below kMinAngleDeg (its plane circumcentre is inserted). A centre outside the
+// face or in the diametral circle of a boundary piece is not inserted; the piece is reported instead (EdgeSplit),
+// and brep_to_plc.cpp splits that CAD edge's chain for every face that uses it and meshes the faces again (Chew's
+// rule across faces). New nodes are points of the surface, exactly.
 // CGAL first: OpenCASCADE defines a Handle() macro that CGAL's own Handle templates would expand.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -52,7 +53,7 @@ namespace {
 // which with the shorter edges at the boundary gives Gmsh's node count at equal size (measured on part.step).
 constexpr double kRadiusFactor = 0.7;
 // Smallest 3D corner angle the refinement aims at (Chew's algorithm reaches 30 away from the boundary).
-constexpr double kMinAngleDeg = 21;
+constexpr double kMinAngleDeg = 25;
 // Shape refinement stops at triangles this small relative to the size (no cascade towards a corner the boundary
 // makes acute: those keep the angle the boundary gives them).
 constexpr double kSmallestRadiusFactor = 0.2;
@@ -209,6 +210,8 @@ class FaceMesher {
         Point2 hint;
         double u, v;
         std::array<VertexInfo, 3> corners;
+        bool shape_only;       // good size, bad shape: insert the plane circumcentre
+        Point2 plane_centre;
       };
       std::vector<Candidate> candidates;
       for (auto f = cdt_.finite_faces_begin(); f != cdt_.finite_faces_end(); ++f) {
@@ -218,13 +221,15 @@ class FaceMesher {
         gp_Pnt centre;
         double radius = 0;
         if (!circumcentre(a.point, b.point, c.point, centre, radius)) continue;
-        const double min_angle = std::min({angle_deg(a.point, b.point, c.point), angle_deg(b.point, c.point, a.point),
-                                           angle_deg(c.point, a.point, b.point)});
+        // Shape is judged in the plane, where circumcentres improve it (Ruppert, Chew); in space an anisotropic
+        // stretch (a torus's inner and outer sides, a sphere's poles) would make refinement cascade without end.
+        const Point2 &pa = f->vertex(0)->point(), &pb = f->vertex(1)->point(), &pc = f->vertex(2)->point();
+        const double min_angle = plane_min_angle_deg(pa, pb, pc);
         const bool too_big = radius > kRadiusFactor * size_;
         if (!too_big && (min_angle >= kMinAngleDeg || radius < kSmallestRadiusFactor * size_)) continue;
         candidates.push_back({too_big ? radius / size_ + 10 : 1 / std::max(min_angle, 1e-3), centre, radius,
-                              CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()),
-                              (a.u + b.u + c.u) / 3, (a.v + b.v + c.v) / 3, {a, b, c}});
+                              CGAL::centroid(pa, pb, pc), (a.u + b.u + c.u) / 3, (a.v + b.v + c.v) / 3, {a, b, c},
+                              !too_big, CGAL::circumcenter(pa, pb, pc)});
       }
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& x, const Candidate& y) { return x.priority > y.priority; });
@@ -234,7 +239,7 @@ class FaceMesher {
           stats.capped = true;
           break;
         }
-        const Outcome outcome = try_insert(c.centre, c.radius, c.hint, c.u, c.v);
+        const Outcome outcome = try_insert(c.centre, c.radius, c.hint, c.u, c.v, c.shape_only ? &c.plane_centre : nullptr);
         if (outcome == Outcome::Inserted) {
           ++inserted, ++stats.num_inserted;
         } else {
@@ -286,22 +291,33 @@ class FaceMesher {
     return same(a, b) || same(b, c) || same(a, c);
   }
 
-  // Brings a parameter found by the projection into the period nearest to `hint` on a periodic surface.
-  static double unwrap(double value, double hint, bool periodic, double period) {
+  // Brings a parameter found by the projection into [low - a little, low + period) on a periodic surface.
+  static double wrap(double value, double low, bool periodic, double period) {
     if (!periodic || !(period > 0)) return value;
-    return value + period * std::round((hint - value) / period);
+    const double slack = 1e-9 * period;
+    return value - period * std::floor((value - low + slack) / period);
   }
 
   enum class Outcome { Inserted, Outside, Encroaching, Crowded };
 
-  Outcome try_insert(const gp_Pnt& centre, double radius, const Point2& hint, double hint_u, double hint_v) {
-    const gp_Pnt2d uv = analysis_->NextValueOfUV(gp_Pnt2d(hint_u, hint_v), centre, 1e-9 * (radius + size_));
-    const double u = unwrap(uv.X(), hint_u, surface_.IsUPeriodic(), surface_.IsUPeriodic() ? surface_.UPeriod() : 0);
-    const double v = unwrap(uv.Y(), hint_v, surface_.IsVPeriodic(), surface_.IsVPeriodic() ? surface_.VPeriod() : 0);
+  // Inserts the surface point nearest to `centre` (a 3D circumcentre), or with `plane_target` the surface point over
+  // that point of the plane.
+  Outcome try_insert(const gp_Pnt& centre, double radius, const Point2& hint, double hint_u, double hint_v,
+                     const Point2* plane_target) {
+    double u = 0, v = 0;
+    if (plane_target) {
+      u = unstretch(plane_target->x(), u0_, u1_, s_of_u_, su_);
+      v = unstretch(plane_target->y(), v0_, v1_, t_of_v_, sv_);
+    } else {
+      const gp_Pnt2d uv = analysis_->NextValueOfUV(gp_Pnt2d(hint_u, hint_v), centre, 1e-9 * (radius + size_));
+      // Into the face's period: a centre across a seam is a point of the face on the seam's other side.
+      u = wrap(uv.X(), u0_, surface_.IsUPeriodic(), surface_.IsUPeriodic() ? surface_.UPeriod() : 0);
+      v = wrap(uv.Y(), v0_, surface_.IsVPeriodic(), surface_.IsVPeriodic() ? surface_.VPeriod() : 0);
+    }
     if (!std::isfinite(u) || !std::isfinite(v)) return Outcome::Outside;
     const gp_Pnt point = surface_.Value(u, v);
-    if (point.Distance(centre) > radius) return Outcome::Outside;  // the surface is far from the triangle's plane
-    const Point2 p = plane_point(u, v);
+    if (!plane_target && point.Distance(centre) > radius) return Outcome::Outside;  // surface far from the plane
+    const Point2 p = plane_target ? *plane_target : plane_point(u, v);
     Cdt::Locate_type type;
     int li = 0;
     Cdt::Face_handle located = cdt_.locate(p, type, li, cdt_.locate(hint));
@@ -313,10 +329,10 @@ class FaceMesher {
     for (const Cdt::Edge& e : boundary) {
       // A boundary edge of the conflict zone on the face's border (constrained): is the point in its diametral ball?
       if (!cdt_.is_constrained(e)) continue;
-      const gp_Pnt& a = e.first->vertex(Cdt::cw(e.second))->info().point;
-      const gp_Pnt& b = e.first->vertex(Cdt::ccw(e.second))->info().point;
-      const gp_Pnt middle((a.XYZ() + b.XYZ()) / 2);
-      if (point.SquareDistance(middle) <= 0.25 * a.SquareDistance(b)) {
+      // In the plane, where the triangulation is Delaunay (a 3D test would split edges for the stretch alone).
+      const Point2& a = e.first->vertex(Cdt::cw(e.second))->point();
+      const Point2& b = e.first->vertex(Cdt::ccw(e.second))->point();
+      if (CGAL::squared_distance(p, CGAL::midpoint(a, b)) <= 0.25 * CGAL::squared_distance(a, b)) {
         request_split(e.first->vertex(Cdt::cw(e.second))->info(), e.first->vertex(Cdt::ccw(e.second))->info());
         return Outcome::Encroaching;
       }
@@ -380,6 +396,25 @@ class FaceMesher {
     if (f >= kStretchKnots) return table[kStretchKnots] + slope * (x - x1);
     const int i = std::min(static_cast<int>(f), kStretchKnots - 1);
     return table[i] + (table[i + 1] - table[i]) * (f - i);
+  }
+
+  // The inverse of stretch (the tables increase strictly).
+  static double unstretch(double y, double x0, double x1, const std::array<double, kStretchKnots + 1>& table,
+                          double slope) {
+    if (!(x1 > x0)) return x0 + y / slope;
+    if (y <= table[0]) return x0 + (y - table[0]) / slope;
+    if (y >= table[kStretchKnots]) return x1 + (y - table[kStretchKnots]) / slope;
+    const int i = static_cast<int>(std::upper_bound(table.begin(), table.end(), y) - table.begin()) - 1;
+    const double f = (y - table[i]) / (table[i + 1] - table[i]);
+    return x0 + (x1 - x0) * (i + f) / kStretchKnots;
+  }
+
+  static double plane_min_angle_deg(const Point2& a, const Point2& b, const Point2& c) {
+    auto angle = [](const Point2& p, const Point2& q, const Point2& r) {
+      const double x1 = q.x() - p.x(), y1 = q.y() - p.y(), x2 = r.x() - p.x(), y2 = r.y() - p.y();
+      return std::atan2(std::fabs(x1 * y2 - y1 * x2), x1 * x2 + y1 * y2) * 180 / M_PI;
+    };
+    return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
   }
 
   Point2 plane_point(double u, double v) const {
