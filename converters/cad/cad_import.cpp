@@ -70,7 +70,8 @@ CadModel read_cad(const std::string& path, const CadOptions& options) {
   try {
     model = cad::convert_solids_to_plc(solids, options, path);
   } catch (const InputError& e) {
-    if (options.surface_mesh != CadSurfaceMesh::Sized) throw;
+    // A bad option (a local size on an entity that does not exist) is the user's to fix, not a reason to fall back.
+    if (options.surface_mesh != CadSurfaceMesh::Sized || e.code() == ErrorCode::IndexOutOfRange) throw;
     why = e.message();  // bottle.brep: no region seed clear of a thin wall by twice the chordal error
   }
   if (options.surface_mesh == CadSurfaceMesh::Sized) {
