@@ -1,0 +1,346 @@
+// Tests of the refinement levels (core/src/refine/levels.h; Cheng & Dey, Section 3.7, Rules 1-3) on small
+// constructed cases, through the engine's private interface:
+//   - Rule 1: a subsegment with an input vertex in its diametral ball is encroached under the paper's rule and not
+//     under the Steiner policy; its split point is accepted (Conflict::None), a point on a vertex dropped;
+//   - Rule 2: the circumcentre of an obtuse subfacet encroaches its long edge (Conflict::SplitSubsegment, the
+//     subsegment queued, forced); a centre on a vertex is dropped; a centre away from the facet's boundary accepted;
+//   - Rule 3: a point near a cube's edge asks for a subsegment split, the cube's centre for subfacet splits, a
+//     point next to an interior vertex is accepted, a point on an interior vertex dropped;
+//   - the after-insertion hooks queue what a new vertex encroaches, and every insertion reaches every level (the
+//     boundary stage recovers every subsegment and subfacet);
+//   - RefineParams and EncroachmentPolicy derive what the options say;
+//   - re-refining a refined mesh adds nothing (CGAL Mesh_3's test_meshing_utilities property).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "qualmesh/mesher.h"
+#include "refine/refine_state.h"
+
+namespace {
+
+using qualmesh::Index;
+using qualmesh::kNoIndex;
+using qualmesh::MeshOptions;
+using qualmesh::Plc;
+using qualmesh::Point3;
+namespace d = qualmesh::detail;
+
+Plc tetrahedron(const Point3& a, const Point3& b, const Point3& c, const Point3& e) {
+  Plc plc;
+  plc.vertices = {a, b, c, e};
+  for (const std::vector<Index>& t : std::vector<std::vector<Index>>{{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}}) {
+    qualmesh::Facet f;
+    f.polygons.push_back(t);
+    plc.facets.push_back(f);
+  }
+  return plc;
+}
+
+Plc box(const Point3& lo, const Point3& hi) {
+  Plc plc;
+  for (int k = 0; k < 8; ++k)
+    plc.vertices.push_back({k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]});
+  const std::vector<std::vector<Index>> quads{{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                              {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    qualmesh::Facet f;
+    f.polygons.push_back(q);
+    plc.facets.push_back(f);
+  }
+  return plc;
+}
+
+// The engine's state after step 1 (the Delaunay triangulation of the input vertices and the facets' 2D
+// triangulations), as mesh_plc() builds it; refine() runs the boundary, regions and refinement stages.
+struct Engine {
+  Plc plc;
+  std::unique_ptr<d::MeshState> state = std::make_unique<d::MeshState>();
+  d::MeshState& s = *state;
+
+  explicit Engine(Plc input, const MeshOptions& options = {}) : plc(std::move(input)) {
+    s.plc = &plc;
+    s.set_options(options);
+    s.complex = d::build_input_complex(plc);
+    d::insert_input_vertices(s);
+    d::build_facet_meshes(s);
+  }
+  void boundary_and_regions() {
+    d::enqueue_initial_boundary(s);
+    d::run_refinement(s, false);
+    d::compute_regions(s);
+  }
+  void refine() {
+    boundary_and_regions();
+    d::enqueue_all_tets(s);
+    d::run_refinement(s, true);
+    std::vector<d::Ch3> assigned;
+    if (!s.region_pending.empty()) d::flood_pending_regions(s, assigned);
+  }
+  Index segment(Index a, Index b) const { return s.complex.find_segment(a, b); }
+  d::Ch3 cell_containing(const Point3& p) const { return s.tr.locate(d::KWeightedPoint3(d::to_kpoint(p), 0)); }
+  // An interior volume vertex at least `clearance` from the box [lo, hi]'s faces.
+  Index interior_vertex(const Point3& lo, const Point3& hi, double clearance) const {
+    for (Index v = 0; v < s.vertices.size(); ++v) {
+      if (s.vertices[v].kind != d::VertexKind::Volume) continue;
+      const Point3& p = s.point(v);
+      bool inside = true;
+      for (int k = 0; k < 3; ++k) inside = inside && p[k] > lo[k] + clearance && p[k] < hi[k] - clearance;
+      if (inside) return v;
+    }
+    return kNoIndex;
+  }
+};
+
+// Tetrahedron whose face ABC is obtuse at C: C lies inside the diametral ball of AB (input edge, segment 0-1).
+Plc obtuse_tetrahedron() { return tetrahedron({0, 0, 0}, {2, 0, 0}, {1, 0.2, 0}, {1, 0.1, 1}); }
+
+TEST(Levels, Rule1EncroachedUnderThePapersRuleOnly) {
+  Engine paper(obtuse_tetrahedron());
+  const Index ab = paper.segment(0, 1);
+  ASSERT_NE(ab, kNoIndex);
+  Index enc = kNoIndex;
+  EXPECT_TRUE(paper.s.rule1.encroached(paper.s, ab, 0, 1, &enc));
+  EXPECT_EQ(enc, 2u) << "C is the vertex in AB's diametral ball";
+  // A present edge with no other vertex in its diametral ball: CD.
+  const Index cd = paper.segment(2, 3);
+  ASSERT_NE(cd, kNoIndex);
+  EXPECT_FALSE(paper.s.rule1.encroached(paper.s, cd, 2, 3, &enc));
+
+  MeshOptions steiner;
+  steiner.encroaching = MeshOptions::Encroaching::Steiner;
+  Engine relaxed(obtuse_tetrahedron(), steiner);
+  EXPECT_FALSE(relaxed.s.rule1.encroached(relaxed.s, ab, 0, 1, &enc))
+      << "an input vertex does not encroach a present input edge under the Steiner policy";
+}
+
+TEST(Levels, Rule1SplitPointAcceptedAndPointOnVertexDropped) {
+  Engine e(obtuse_tetrahedron());
+  d::MeshState& s = e.s;
+  const Index ab = e.segment(0, 1);
+  double t = -1;
+  const Point3 p = s.rule1.refinement_point(s, ab, 0, 1, &t);
+  EXPECT_DOUBLE_EQ(t, 0.5) << "an input edge between two acute apices is halved first";
+  EXPECT_DOUBLE_EQ(p[0], 1.0);
+  d::ConflictZone cz;
+  EXPECT_EQ(s.rule1.conflict(s, p, d::hint_of(s, 0), cz), d::Conflict::None);
+  EXPECT_FALSE(cz.cells.empty());
+  EXPECT_EQ(s.rule1.conflict(s, s.point(3), d::hint_of(s, 0), cz), d::Conflict::Drop);
+}
+
+TEST(Levels, Rule2CentreOfObtuseSubfacetSplitsItsLongEdge) {
+  // ABC obtuse at C (96 degrees): its circumcentre (1, -0.106, 0) lies in AB's diametral ball.
+  for (const auto rule : {MeshOptions::Encroaching::All, MeshOptions::Encroaching::Steiner}) {
+    MeshOptions options;
+    options.encroaching = rule;
+    Engine e(tetrahedron({0, 0, 0}, {2, 0, 0}, {1, 0.9, 0}, {1, 0.3, 1}), options);
+    d::MeshState& s = e.s;
+    const std::array<Index, 3> abc{0, 1, 2};
+    const Index facet = d::subfacet_of(s, 0, 1, 2);
+    ASSERT_NE(facet, kNoIndex);
+    const d::KPoint3 centre = s.rule2.refinement_point(s, abc);
+    EXPECT_NEAR(centre.y(), -0.10556, 1e-4);
+    d::ConflictZone cz;
+    d::Candidates cand;
+    s.rule1.queue.clear();
+    EXPECT_EQ(s.rule2.conflict(s, facet, abc, centre, cz, cand), d::Conflict::SplitSubsegment);
+    ASSERT_EQ(s.rule1.queue.size(), 1u);
+    EXPECT_EQ(s.rule1.queue.front().segment, e.segment(0, 1));
+    EXPECT_TRUE(s.rule1.queue.front().forced);
+  }
+}
+
+TEST(Levels, Rule2CentreOnVertexDroppedAndInnerCentreAccepted) {
+  MeshOptions options;
+  options.max_edge_length = 0.5;
+  options.pump = false;
+  const Point3 lo{0, 0, 0}, hi{3, 3, 1};
+  Engine e(box(lo, hi), options);
+  e.refine();
+  d::MeshState& s = e.s;
+  // A subfacet of the bottom face (facet 0, z = 0) well inside it: no subsegment near its centre.
+  const Index bottom = 0;
+  std::vector<std::array<Index, 3>> faces;
+  d::collect_subfacets(s, bottom, faces);
+  ASSERT_FALSE(faces.empty());
+  for (Index v : faces.front()) ASSERT_EQ(s.point(v)[2], 0.0);
+  std::optional<std::array<Index, 3>> inner;
+  for (const auto& f : faces) {
+    bool far = true;
+    for (Index v : f) {
+      const Point3& p = s.point(v);
+      far = far && p[0] > 1 && p[0] < 2 && p[1] > 1 && p[1] < 2;
+    }
+    if (far) inner = f;
+  }
+  ASSERT_TRUE(inner) << "a refined 3x3 face has subfacets in its middle square";
+  const d::KPoint3 centre = s.rule2.refinement_point(s, *inner);
+  d::ConflictZone cz;
+  d::Candidates cand;
+  EXPECT_EQ(s.rule2.conflict(s, bottom, *inner, centre, cz, cand), d::Conflict::None);
+  EXPECT_FALSE(cz.cells.empty());
+  EXPECT_EQ(s.rule2.conflict(s, bottom, *inner, s.kpoint((*inner)[0]), cz, cand), d::Conflict::Drop);
+}
+
+TEST(Levels, Rule3CubeCentreSplitsSubfacetsAndEdgePointSplitsSubsegment) {
+  Engine e(box({0, 0, 0}, {1, 1, 1}));
+  e.boundary_and_regions();
+  d::MeshState& s = e.s;
+  ASSERT_EQ(s.vertices.size(), 8u) << "the cube's boundary conforms with its corners alone";
+  const d::TetEntry entry{};
+  {
+    const Point3 z{0.5, 0.04, 0.04};  // 0.06 from the midpoint of the edge 0-1, whose diametral ball has radius 0.5
+    const d::Ch3 c = e.cell_containing(z);
+    ASSERT_GE(c->info().region, 0);
+    d::ConflictZone cz;
+    d::Candidates cand;
+    EXPECT_EQ(s.rule3.conflict(s, entry, c, d::to_kpoint(z), cz, cand), d::Conflict::SplitSubsegment);
+    EXPECT_FALSE(s.rule1.empty());
+  }
+  s.rule1.queue.clear();
+  s.rule2.queue.clear();
+  {
+    // The cube's centre: 0.5 from each face's centre, inside every subfacet's diametral ball (radius 0.707), and
+    // 0.707 from each edge's midpoint, outside every subsegment's (radius 0.5).
+    const Point3 z{0.5, 0.5, 0.5};
+    const d::Ch3 c = e.cell_containing(z);
+    d::ConflictZone cz;
+    d::Candidates cand;
+    EXPECT_EQ(s.rule3.conflict(s, entry, c, d::to_kpoint(z), cz, cand), d::Conflict::SplitSubfacet);
+    EXPECT_TRUE(s.rule1.empty());
+    EXPECT_FALSE(s.rule2.empty());
+    for (const d::SubfacetEntry& f : s.rule2.queue) {
+      EXPECT_TRUE(f.has_point) << "Rule 2 gets the point, for Lemma 3.5's projection";
+      EXPECT_TRUE(f.forced);
+    }
+  }
+}
+
+TEST(Levels, Rule3AcceptsAPointInsideAndDropsOneOnAVertex) {
+  MeshOptions options;
+  options.max_edge_length = 0.3;
+  options.pump = false;
+  const Point3 lo{0, 0, 0}, hi{3, 3, 3};
+  Engine e(box(lo, hi), options);
+  e.refine();
+  d::MeshState& s = e.s;
+  const Index v = e.interior_vertex(lo, hi, 1.0);
+  ASSERT_NE(v, kNoIndex);
+  const Point3 p = s.point(v);
+  const d::TetEntry entry{};
+  {
+    const Point3 z{p[0] + 0.01, p[1] + 0.005, p[2] - 0.007};
+    const d::Ch3 c = e.cell_containing(z);
+    d::ConflictZone cz;
+    d::Candidates cand;
+    EXPECT_EQ(s.rule3.conflict(s, entry, c, d::to_kpoint(z), cz, cand), d::Conflict::None);
+    EXPECT_TRUE(cand.subsegments.empty());
+    EXPECT_TRUE(cand.subfacets.empty());
+  }
+  {
+    const d::Ch3 c = s.vertices[v].handle->cell();
+    d::ConflictZone cz;
+    d::Candidates cand;
+    s.rule2.queue.clear();
+    EXPECT_EQ(s.rule3.conflict(s, entry, c, d::to_kpoint(p), cz, cand), d::Conflict::Drop)
+        << "a point on an interior vertex, in a cell with no subfacet: nothing to split";
+    EXPECT_TRUE(s.rule2.empty());
+  }
+}
+
+TEST(Levels, AfterInsertionHooksQueueWhatTheNewVertexEncroaches) {
+  Engine e(box({0, 0, 0}, {1, 1, 1}));
+  e.boundary_and_regions();
+  d::MeshState& s = e.s;
+  ASSERT_TRUE(s.rule1.empty());
+  ASSERT_TRUE(s.rule2.empty());
+  // A volume vertex 0.1 from the midpoint of edge 0-1 (in its diametral ball) and 0.1 above the bottom face
+  // (in the diametral balls of the bottom's subfacets that hold its projection).
+  const Point3 p{0.5, 0.1, 0.1};
+  d::ConflictZone cz;
+  ASSERT_TRUE(d::find_conflict_zone(s, d::to_kpoint(p), e.cell_containing(p), cz));
+  const int region = e.cell_containing(p)->info().region;
+  d::insert_volume_vertex(s, p, cz.cells, cz.boundary, region);
+  bool edge_queued = false;
+  for (const d::SubsegmentEntry& q : s.rule1.queue) edge_queued = edge_queued || q.segment == e.segment(0, 1);
+  EXPECT_TRUE(edge_queued);
+  EXPECT_FALSE(s.rule2.empty());
+}
+
+// Every insertion reaches every level's hook (scheduler.cpp notify_insertion): a Rule 1 split must queue the new
+// subfacets of its facets for Rule 2, or the boundary stage ends with elements missing (a regression: the levels
+// once called only their own hook).
+TEST(Levels, BoundaryStageRecoversEverySubsegmentAndSubfacet) {
+  for (const double cy : {0.2, 0.9, 0.05}) {
+    Engine e(tetrahedron({0, 0, 0}, {2, 0, 0}, {1, cy, 0}, {1, 0.1, 0.7}));
+    e.boundary_and_regions();
+    d::MeshState& s = e.s;
+    EXPECT_GT(s.stats.num_rule1_insertions, 0u) << cy;
+    EXPECT_TRUE(d::boundary_present(s)) << cy;
+    EXPECT_TRUE(d::region_boundaries_are_subfacets(s)) << cy;
+    std::size_t in_domain = 0;
+    for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) in_domain += c->info().region >= 0;
+    EXPECT_GT(in_domain, 0u) << cy;
+  }
+}
+
+TEST(Levels, ParamsDerivedOnceFromTheOptions) {
+  MeshOptions options;
+  options.radius_edge_bound = 1.5;
+  options.max_edge_length = 3;
+  options.max_volume = -1;
+  options.sliver_angle_deg = 12;
+  options.omega = 0.4;
+  options.delta = 0.3;
+  const d::RefineParams p = d::RefineParams::from(options);
+  EXPECT_DOUBLE_EQ(p.sq_radius_edge_bound(), 2.25);
+  EXPECT_DOUBLE_EQ(p.sq_max_edge, 9);
+  EXPECT_EQ(p.max_volume, 0) << "a non-positive volume bound is none";
+  EXPECT_TRUE(p.sq_radius_edge_above_bound(2.26, 1));
+  EXPECT_FALSE(p.sq_radius_edge_above_bound(2.25, 1));
+  EXPECT_TRUE(p.is_sliver(11.9, 1.5));
+  EXPECT_FALSE(p.is_sliver(11.9, 1.51)) << "above rho0: a skinny tetrahedron (Rule 3), not a sliver";
+  EXPECT_FALSE(p.is_sliver(12, 1.0));
+  EXPECT_TRUE(p.below_sliver_angle(11.9));
+  EXPECT_DOUBLE_EQ(p.sliver_deficit_deg(10), 2);
+  EXPECT_DOUBLE_EQ(p.sliver_deficit_deg(20), 0);
+  bool by_omega = false;
+  EXPECT_DOUBLE_EQ(p.weight_cap(1.0, 4.0, &by_omega), 0.4 * 0.4);  // omega0^2 f^2 below delta^2 N^2 = 0.36
+  EXPECT_TRUE(by_omega);
+  EXPECT_DOUBLE_EQ(p.weight_cap(std::numeric_limits<double>::infinity(), 1.0, &by_omega), 0.3 * 0.3);
+  EXPECT_FALSE(by_omega);
+  EXPECT_TRUE(p.encroachment.paper());
+  options.encroaching = MeshOptions::Encroaching::Steiner;
+  EXPECT_FALSE(d::RefineParams::from(options).encroachment.paper());
+  EXPECT_TRUE(d::RefineParams::from(options).encroachment.walks_to_centres());
+}
+
+TEST(Levels, ReRefiningARefinedMeshAddsNothing) {
+  for (const auto rule : {MeshOptions::Encroaching::All, MeshOptions::Encroaching::Steiner}) {
+    MeshOptions options;
+    options.max_edge_length = 0.35;
+    options.pump = false;
+    options.encroaching = rule;
+    Engine e(box({0, 0, 0}, {1, 2, 1}), options);
+    e.refine();
+    d::MeshState& s = e.s;
+    const std::size_t num_vertices = s.tr.number_of_vertices();
+    ASSERT_GT(num_vertices, 8u);
+    d::enqueue_initial_boundary(s);
+    d::run_refinement(s, false);
+    EXPECT_TRUE(s.rule1.empty() && s.rule2.empty());
+    d::enqueue_all_tets(s);
+    d::run_refinement(s, true);
+    EXPECT_EQ(s.tr.number_of_vertices(), num_vertices);
+    EXPECT_EQ(s.vertices.size(), num_vertices);
+    EXPECT_TRUE(d::boundary_present(s));
+  }
+}
+
+}  // namespace
