@@ -1,15 +1,19 @@
 #!/usr/bin/python3
 """Side-by-side benchmark on CAD models: QualMesh against Gmsh on the same STEP/IGES/BREP file, in the same run.
 
-Per model: QualMesh's time to PLC (`qualmesh convert MODEL x.poly`: read, heal, tessellate) and to mesh
-(`qualmesh mesh`), Gmsh's time to mesh (`gmsh -3`, default sizes), and for both meshes the tetrahedron count and the
-minimum dihedral angle as `qualmesh check` measures them (one checker judges both). Not a test: timings are noisy,
-compare within one run only.
+Per model, three sizes: Gmsh's default (a tenth of the bounding-box diagonal, what Gmsh gives a CAD vertex without a
+prescribed size), then 2x and 4x finer. At each size both meshers get matched parameters: `qualmesh mesh --size H
+--curvature N` and `gmsh -3 -clmax H -clcurv N` (N elements per full circle, 12 by default, as QualMesh's default).
+Reported for both, measured by one checker (`qualmesh check --json`, over ALL tetrahedra): nodes, tets, minimum
+dihedral angle, tets below 10 and 15 degrees, whole-process wall time (file to mesh), and the volume error against
+OpenCASCADE's volume of the solids (read from `qualmesh info`). Not a test: timings are noisy, compare within one
+run only.
 
-Usage: bench/bench_cad_gmsh.py [--qualmesh build/converters/qualmesh] [--timeout 600] [MODEL ...]
+Usage: bench/bench_cad_gmsh.py [--qualmesh build/converters/qualmesh] [--timeout 600] [--curvature 12] [MODEL ...]
 """
 import argparse
 import json
+import re
 import shutil
 import subprocess
 import sys
@@ -33,16 +37,38 @@ def timed(cmd, cwd, timeout):
 def judge(qualmesh, mesh, cwd):
     proc = subprocess.run([qualmesh, "check", str(mesh), "--json"], cwd=cwd, capture_output=True, text=True)
     try:
-        report = json.loads(proc.stdout)
+        return json.loads(proc.stdout)
     except json.JSONDecodeError:
-        return None, None
-    return report.get("num_tets"), report.get("min_dihedral_deg")
+        return None
+
+
+def model_facts(qualmesh, model, cwd):
+    """(bounding-box diagonal, OpenCASCADE volume of all solids, surface note) from `qualmesh info`."""
+    proc = subprocess.run([qualmesh, "info", str(model)], cwd=cwd, capture_output=True, text=True)
+    diag = re.search(r"diagonal ([0-9.eE+-]+)", proc.stdout)
+    volumes = [float(v) for v in re.findall(r"Solid\d+: volume ([0-9.eE+-]+)", proc.stdout)]
+    fallback = "tessellated" if "no sized surface mesh" in proc.stdout else "sized"
+    return (float(diag.group(1)) if diag else None), (sum(volumes) if volumes else None), fallback
+
+
+def fmt(x, spec):
+    return format(x, spec) if isinstance(x, (int, float)) else "-"
+
+
+def row(report, seconds, ok, cad_volume):
+    if not ok or report is None:
+        return ["failed", "-", "-", "-", "-", fmt(seconds, ".2f"), "-"]
+    error = abs(report["mesh_volume"] - cad_volume) / cad_volume if cad_volume else None
+    return [fmt(report["num_points"], "d"), fmt(report["num_tets"], "d"), fmt(report["min_dihedral_deg"], ".2f"),
+            fmt(report["num_tets_min_dihedral_below_10"], "d"), fmt(report["num_tets_min_dihedral_below_15"], "d"),
+            fmt(seconds, ".2f"), fmt(error, ".2e")]
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--qualmesh", default=str(ROOT / "build" / "converters" / "qualmesh"))
     parser.add_argument("--timeout", type=int, default=600)
+    parser.add_argument("--curvature", type=float, default=12)
     parser.add_argument("models", nargs="*")
     args = parser.parse_args()
     qualmesh = str(Path(args.qualmesh).resolve())
@@ -51,29 +77,34 @@ def main():
     models = [Path(m).resolve() for m in args.models] or sorted(
         p for p in CAD.iterdir() if p.suffix.lower() in (".step", ".stp", ".igs", ".iges", ".brep"))
 
-    print("| model | QM to PLC s | QM mesh s | QM tets | QM min dihedral | Gmsh s | Gmsh tets | Gmsh min dihedral "
-          "| time ratio QM/Gmsh |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    head = ["nodes", "tets", "min dih", "<10", "<15", "wall s", "vol err"]
+    print("| model | size | surface | " + " | ".join("QM " + h for h in head) + " | "
+          + " | ".join("Gmsh " + h for h in head) + " | nodes QM/Gmsh | time QM/Gmsh |")
+    print("|" + "---|" * (5 + 2 * len(head)))
     with tempfile.TemporaryDirectory() as tmp:
         for model in models:
-            t_plc, conv = timed([qualmesh, "convert", str(model), "plc.poly"], tmp, args.timeout)
-            qm_out = Path(tmp) / "qm.vtu"
-            t_q, q = timed([qualmesh, "mesh", str(model), "-o", str(qm_out)], tmp, args.timeout)
-            q_tets, q_dih = judge(qualmesh, qm_out, tmp) if q.returncode == 0 else (None, None)
-            g_out = Path(tmp) / "gmsh.msh"
-            t_g, g = timed(["gmsh", "-3", str(model), "-format", "msh41", "-o", str(g_out)], tmp, args.timeout)
-            g_tets, g_dih = judge(qualmesh, g_out, tmp) if g.returncode == 0 and g_out.exists() else (None, None)
-
-            def fmt(x, spec):
-                return format(x, spec) if isinstance(x, (int, float)) else "-"
-            q_time = fmt(t_q, ".2f") if q.returncode == 0 else f"failed ({q.returncode})"
-            g_time = fmt(t_g, ".2f") if g.returncode == 0 else f"failed ({g.returncode})"
-            ratio = fmt(t_q / t_g, ".2f") if q.returncode == 0 and g.returncode == 0 else "-"
-            plc_time = fmt(t_plc, ".2f") if conv.returncode == 0 else f"failed ({conv.returncode})"
-            print(f"| {model.name} | {plc_time} | {q_time} | {fmt(q_tets, 'd')} | {fmt(q_dih, '.2f')} | {g_time} | "
-                  f"{fmt(g_tets, 'd')} | {fmt(g_dih, '.2f')} | {ratio} |", flush=True)
-            for f in (qm_out, g_out):
-                f.unlink(missing_ok=True)
+            diag, cad_volume, surface = model_facts(qualmesh, model, tmp)
+            if diag is None:
+                print(f"| {model.name} | - | qualmesh info failed | " + " | ".join(["-"] * (2 * len(head) + 2)) + " |")
+                continue
+            for factor in (1, 2, 4):
+                size = diag / 10 / factor
+                qm_out, g_out = Path(tmp) / "qm.vtu", Path(tmp) / "gmsh.msh"
+                t_q, q = timed([qualmesh, "mesh", str(model), "-o", str(qm_out), "--size", f"{size:.6g}",
+                                "--curvature", f"{args.curvature:g}"], tmp, args.timeout)
+                q_rep = judge(qualmesh, qm_out, tmp) if q.returncode == 0 else None
+                t_g, g = timed(["gmsh", "-3", str(model), "-clmax", f"{size:.6g}", "-clcurv", f"{args.curvature:g}",
+                                "-format", "msh41", "-o", str(g_out)], tmp, args.timeout)
+                g_ok = g.returncode == 0 and g_out.exists()
+                g_rep = judge(qualmesh, g_out, tmp) if g_ok else None
+                ratio_n = (fmt(q_rep["num_points"] / g_rep["num_points"], ".2f")
+                           if q_rep and g_rep and g_rep["num_points"] else "-")
+                ratio_t = fmt(t_q / t_g, ".2f") if q_rep and g_rep else "-"
+                cells = [model.name, f"{size:.4g}", surface] + row(q_rep, t_q, q.returncode == 0, cad_volume) + \
+                    row(g_rep, t_g, g_ok, cad_volume) + [ratio_n, ratio_t]
+                print("| " + " | ".join(cells) + " |", flush=True)
+                for f in (qm_out, g_out):
+                    f.unlink(missing_ok=True)
 
 
 if __name__ == "__main__":
