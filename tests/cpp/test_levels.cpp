@@ -21,7 +21,9 @@
 #include <vector>
 
 #include "qualmesh/mesher.h"
+#include "qualmesh/plc_io.h"
 #include "refine/refine_state.h"
+#include "test_support.h"
 
 namespace {
 
@@ -288,6 +290,21 @@ TEST(Levels, BoundaryStageRecoversEverySubsegmentAndSubfacet) {
     for (auto c = s.tr.finite_cells_begin(); c != s.tr.finite_cells_end(); ++c) in_domain += c->info().region >= 0;
     EXPECT_GT(in_domain, 0u) << cy;
   }
+}
+
+// The same on a real tessellated model (joint.off: the regression left its boundary with subfacets missing, and
+// the flood found no region inside).
+TEST(Levels, BoundaryStageRecoversEverythingOnJoint) {
+  const std::string path = qualmesh::test::shared_path("data/plc/joint.off");
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " missing";
+  Engine e(qualmesh::read_plc(path));
+  e.boundary_and_regions();
+  EXPECT_GT(e.s.stats.num_rule2_insertions, 0u);
+  EXPECT_TRUE(d::boundary_present(e.s));
+  EXPECT_TRUE(d::region_boundaries_are_subfacets(e.s));
+  std::size_t in_domain = 0;
+  for (auto c = e.s.tr.finite_cells_begin(); c != e.s.tr.finite_cells_end(); ++c) in_domain += c->info().region >= 0;
+  EXPECT_GT(in_domain, 0u);
 }
 
 TEST(Levels, ParamsDerivedOnceFromTheOptions) {
