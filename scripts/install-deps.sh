@@ -5,9 +5,10 @@ set -euo pipefail
 
 # Build: compiler, CMake, CGAL (+Boost, GMP, MPFR), CLI11, GoogleTest.
 BUILD_PACKAGES="cmake g++ make libcgal-dev libboost-dev libgmp-dev libmpfr-dev libcli11-dev libgtest-dev libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev libzip-dev"
-# Tests: Debian's python3 with pytest, numpy and meshio (independent readers), and the peer tools whose output the
-# tests and benchmarks read or compare against.
-TEST_PACKAGES="python3 python3-pytest python3-numpy python3-meshio python3-gmsh python3-pygalmesh tetgen gmsh calculix-ccx openscad freecad xvfb imagemagick"
+# Tests: Debian's python3 with pytest, numpy and meshio (independent readers), the peer tools whose output the
+# tests and benchmarks read or compare against, and clang with its libFuzzer runtime for the readers' fuzzing smoke
+# run (scripts/fuzz.sh).
+TEST_PACKAGES="python3 python3-pytest python3-numpy python3-meshio python3-gmsh python3-pygalmesh tetgen gmsh calculix-ccx openscad freecad xvfb imagemagick clang libclang-rt-dev"
 
 want="$BUILD_PACKAGES"
 if [ "${1:-}" = "--with-tests" ]; then want="$want $TEST_PACKAGES"; fi

@@ -2,7 +2,7 @@
 # Installs what is missing, builds, and runs every test: the unit and property tests under AddressSanitizer and
 # UndefinedBehaviorSanitizer (build-asan/; the real-model meshing suites RealModels*, PumpReal, CadMeshes* and ScadMeshes* take
 # minutes each there, so they run in the Release build only) and the hostile catalogue against the sanitizer build
-# of the CLI, then the whole suite in the Release build (build/).
+# of the CLI, a fuzzing smoke run of the readers, then the whole suite in the Release build (build/).
 # CTest's closing summary of the Release run is the last thing printed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,6 +19,11 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions="$PWD/tests/sanitizer/lsan.supp" \
   ctest --test-dir build-asan -R "^py_test_hostile$" --output-on-failure
+
+# A short fuzzing smoke run of every reader (tests/fuzz/, scripts/fuzz.sh; clang build in build-fuzz/): 12 s each,
+# about 3 minutes with the build; any crash, sanitizer report, uncaught exception or hang fails the run.
+echo "== fuzzing smoke run (libFuzzer, 12 s per reader) =="
+bash scripts/fuzz.sh all 12
 
 echo "== release build, full suite =="
 bash scripts/build.sh

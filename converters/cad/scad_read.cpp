@@ -13,6 +13,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -44,12 +45,52 @@ std::string read_text(const std::filesystem::path& path) {
   return text.str();
 }
 
+// While openscad renders (issue 18 item 4): SIGINT, SIGTERM or SIGHUP kill it and remove the temporary folder, then
+// go on to the handler that was there before (the CLI's removes its own temporaries and ends the process). Only
+// async-signal-safe calls, on state in static storage. A SIGKILL of qualmesh cannot be caught: openscad then gets
+// SIGKILL from the kernel (PR_SET_PDEATHSIG) and only the folder's few files stay.
+struct RenderInFlight {
+  static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+  static inline volatile sig_atomic_t pid = 0;
+  static inline char files[3][4096];  // render.off, console.txt, then the folder
+  static inline struct sigaction previous[3];
+
+  static void on_signal(int signal_number) {
+    if (pid > 0) {
+      kill(pid, SIGKILL);
+      waitpid(pid, nullptr, 0);
+    }
+    unlink(files[0]);
+    unlink(files[1]);
+    rmdir(files[2]);
+    for (int i = 0; i < 3; ++i)
+      if (kSignals[i] == signal_number) sigaction(signal_number, &previous[i], nullptr);
+    raise(signal_number);  // delivered to the previous handler once this one returns
+  }
+  RenderInFlight(const std::filesystem::path& dir, const std::filesystem::path& output,
+                 const std::filesystem::path& console) {
+    const std::string paths[3] = {output.string(), console.string(), dir.string()};
+    for (int i = 0; i < 3; ++i) std::snprintf(files[i], sizeof files[i], "%s", paths[i].c_str());
+    struct sigaction action {};
+    action.sa_handler = on_signal;
+    sigemptyset(&action.sa_mask);
+    for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &action, &previous[i]);
+  }
+  ~RenderInFlight() {
+    for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &previous[i], nullptr);
+    pid = 0;
+  }
+};
+
 // Runs `command -o out in` with a time limit; returns OpenSCAD's console output (stdout and stderr).
 std::string run_openscad(const CadOptions& options, const std::string& input, const std::filesystem::path& output,
                          const std::filesystem::path& console, int& status, bool& timed_out) {
+  const pid_t parent = getpid();
   pid_t pid = fork();
   if (pid < 0) throw InputError(ErrorCode::Io, "cannot start openscad (fork failed)", input);
   if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGKILL);  // qualmesh gone, openscad goes too
+    if (getppid() != parent) _exit(127);
     int fd = open(console.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
     if (fd >= 0) {
       dup2(fd, 1);
@@ -59,6 +100,7 @@ std::string run_openscad(const CadOptions& options, const std::string& input, co
            static_cast<char*>(nullptr));
     _exit(127);
   }
+  RenderInFlight::pid = pid;
   const auto start = std::chrono::steady_clock::now();
   timed_out = false;
   while (true) {
@@ -73,6 +115,7 @@ std::string run_openscad(const CadOptions& options, const std::string& input, co
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
+  RenderInFlight::pid = 0;
   return read_text(console);
 }
 
@@ -83,8 +126,18 @@ std::string openscad_complaints(const std::string& console) {
   while (std::getline(lines, line))
     if (line.find("ERROR") != std::string::npos || line.find("WARNING") != std::string::npos)
       picked += (picked.empty() ? "" : " | ") + line;
-  if (picked.empty()) picked = console.substr(0, 2000);
-  return picked;
+  if (!picked.empty()) return picked;
+  // No ERROR or WARNING line: what is left once OpenSCAD's cache and timing statistics are taken out.
+  std::istringstream again(console);
+  while (std::getline(again, line)) {
+    if (line.rfind("Geometries in cache", 0) == 0 || line.rfind("Geometry cache size", 0) == 0 ||
+        line.rfind("CGAL Polyhedrons in cache", 0) == 0 || line.rfind("CGAL cache size", 0) == 0 ||
+        line.rfind("Total rendering time", 0) == 0 || line.find_first_not_of(" \t\r") == std::string::npos)
+      continue;
+    picked += (picked.empty() ? "" : " | ") + line;
+  }
+  if (picked.empty()) picked = "(no message)";
+  return picked.substr(0, 2000);
 }
 
 // Minimal OFF reader for OpenSCAD's output (header "OFF", counts, coordinates, polygons).
@@ -280,6 +333,10 @@ void refuse_self_intersection(const Plc& plc, const std::string& file) {
 
 CadModel read_scad_file(const std::string& path, const CadOptions& options) {
   if (!std::filesystem::exists(path)) throw InputError(ErrorCode::Io, "no such file", path);
+  if (!std::filesystem::is_regular_file(path)) throw InputError(ErrorCode::Io, "is not a regular file", path);
+  const std::string source = read_text(path);
+  if (source.find_first_not_of(" \t\r\n\f\v") == std::string::npos)
+    throw InputError(ErrorCode::Empty, "the file is empty: it describes no object", path);
   static std::atomic<int> counter{0};
   const auto dir = std::filesystem::temp_directory_path() /
                    ("qualmesh-scad-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
@@ -292,6 +349,7 @@ CadModel read_scad_file(const std::string& path, const CadOptions& options) {
     }
   } cleanup{dir};
   const auto output = dir / "render.off";
+  const RenderInFlight in_flight(dir, output, dir / "console.txt");
   int status = 0;
   bool timed_out = false;
   const std::string console =
@@ -302,6 +360,10 @@ CadModel read_scad_file(const std::string& path, const CadOptions& options) {
   if (WIFEXITED(status) && WEXITSTATUS(status) == 127 && !std::filesystem::exists(output))
     throw InputError(ErrorCode::Io, "cannot run '" + options.openscad_command +
                                         "' (install OpenSCAD, Debian package openscad)", path);
+  if (console.find("Current top level object is empty.") != std::string::npos)
+    throw InputError(ErrorCode::Empty, "the file describes no object (OpenSCAD: \"Current top level object is "
+                                       "empty.\"); only comments, or only modules and functions that are never "
+                                       "called?", path);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !std::filesystem::exists(output))
     throw InputError(ErrorCode::Parse, "openscad failed: " + openscad_complaints(console), path);
 

@@ -212,7 +212,10 @@ TopoDS_Shape heal_into_solids(const TopoDS_Shape& input, const CadOptions& optio
           message += "; e.g. at";
           for (const auto& p : open_places) message += " " + p;
         }
-        message += " (a larger sewing tolerance or repairing the model in the CAD system may close it)";
+        char larger[32];
+        std::snprintf(larger, sizeof larger, "%.3g", 10 * tol);
+        message += std::string(" (a larger sewing tolerance, e.g. --sewing-tolerance ") + larger +
+                   ", or repairing the model in the CAD system may close it)";
         throw InputError(ErrorCode::OpenBoundary, message, file);
       }
       if (num_new_solids) log.push_back("made " + std::to_string(num_new_solids) + " solid(s) of closed sewn shells");

@@ -3,13 +3,58 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "cli_common.h"
 #include "mesh_limits.h"
 #include "qualmesh/error.h"
+#include "qualmesh/temporary_files.h"
+
+namespace {
+
+// A message as it may reach a terminal (issue 18 item 7): readers quote what they found, and a binary or random file
+// would otherwise put raw bytes (escape sequences included) on the user's screen. Printable ASCII, line feeds and
+// well-formed UTF-8 (a file name with accents) pass; every other byte is written \xNN. At most kMaxBytes of the
+// message are shown.
+std::string printable(const std::string& message) {
+  constexpr std::size_t kMaxBytes = 2000;
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  const std::size_t n = message.size();
+  for (std::size_t i = 0; i < n && out.size() < kMaxBytes;) {
+    const auto byte = static_cast<unsigned char>(message[i]);
+    std::size_t length = 0;  // of a well-formed UTF-8 sequence starting here
+    if (byte >= 0xC2 && byte <= 0xDF) length = 2;
+    else if (byte >= 0xE0 && byte <= 0xEF) length = 3;
+    else if (byte >= 0xF0 && byte <= 0xF4) length = 4;
+    bool well_formed = length > 0 && i + length <= n;
+    for (std::size_t k = 1; well_formed && k < length; ++k)
+      well_formed = (static_cast<unsigned char>(message[i + k]) & 0xC0) == 0x80;
+    if (well_formed) {
+      out.append(message, i, length);
+      i += length;
+      continue;
+    }
+    if ((byte >= 32 && byte < 127) || byte == '\n') {
+      out += message[i];
+    } else {
+      out += "\\x";
+      out += hex[byte >> 4];
+      out += hex[byte & 15];
+    }
+    ++i;
+  }
+  if (out.size() >= kMaxBytes) out += "... (message cut)";
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace qualmesh::cli;
+  // SIGINT, SIGTERM, SIGHUP during a write remove the temporaries and end the run as the signal asks; SIGXFSZ makes
+  // the write fail instead (issue 18 item 4, qualmesh/temporary_files.h).
+  qualmesh::install_temporary_cleanup_handlers();
   CLI::App app{
       "QualMesh: quality tetrahedral meshing by weighted Delaunay refinement (Cheng & Dey).\n"
       "Exit codes: 0 ok, 1 internal error, 2 bad input or usage, 3 `check` found defects, 4 a resource limit "
@@ -31,7 +76,9 @@ int main(int argc, char** argv) {
     app.exit(e);  // prints the usage error
     return kExitBadInput;
   } catch (const qualmesh::InputError& e) {
-    std::cerr << "qualmesh: " << e.what() << "\n";
+    std::cerr << "qualmesh: " << printable(e.what()) << "\n";
+    // A write that passed `ulimit -f` is a resource limit (exit 4), not bad input; its temporaries are gone.
+    if (qualmesh::file_size_limit_reached()) return kExitResource;
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
     // A resource limit, not a bug (issue 18): the machine or the address-space limit ran out.
@@ -39,7 +86,7 @@ int main(int argc, char** argv) {
                  "nothing written\n";
     return kExitResource;
   } catch (const std::exception& e) {
-    std::cerr << "qualmesh: internal error: " << e.what() << "\n";
+    std::cerr << "qualmesh: internal error: " << printable(e.what()) << "\n";
     return kExitInternal;
   }
   std::cout.flush();

@@ -120,6 +120,8 @@ const Range kDelta{0, true, 0.5, true, "delta below 1/2 keeps the weighted balls
 const Range kDeflection{0, true, kInf, false, "leave the option out for a deflection relative to the diagonal",
                         1e-150};
 const Range kRelativeDeflection{0, true, 1, true, "a fraction of the bounding-box diagonal"};
+const Range kSewingTolerance{0, true, kInf, false, "model units; leave the option out for the automatic tolerance",
+                             1e-150};
 
 void add_check(CLI::App& command, const std::string& name, const CLI::Validator& validator) {
   command.get_option(name)->check(validator);
@@ -137,6 +139,7 @@ void add_mesh_option_checks(CLI::App& command) {
   add_check(command, "--delta", real_in(kDelta));
   add_check(command, "--deflection", real_in(kDeflection));
   add_check(command, "--relative-deflection", real_in(kRelativeDeflection));
+  add_check(command, "--sewing-tolerance", real_in(kSewingTolerance));
   // Resource limits (mesh_limits.h): seconds > 0, a memory budget of at least 16 MB.
   add_check(command, "--time-limit", real_in({0, true, kInf, false, "seconds; leave the option out for no limit"}));
   add_check(command, "--max-memory", real_in({16, false, kInf, false, "MB; default 80% of the RAM"}));
@@ -156,7 +159,9 @@ std::string output_path_problem(const std::string& output) {
   if (!S_ISDIR(st.st_mode)) return shown_path(dir) + " is not a directory";
   if (::access(dir.c_str(), W_OK | X_OK) != 0) return "the directory " + shown_path(dir) + " is not writable";
   struct stat out {};
-  if (::stat(output.c_str(), &out) == 0 && S_ISDIR(out.st_mode)) return shown_path(output) + " is a directory";
+  // An Elmer mesh is a directory: an existing one is replaced whole once the new one is complete (atomic_file.h).
+  if (::stat(output.c_str(), &out) == 0 && S_ISDIR(out.st_mode) && mesh_format_from_path(output) != MeshFormat::Elmer)
+    return shown_path(output) + " is a directory";
   return {};
 }
 

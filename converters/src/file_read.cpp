@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "qualmesh/error.h"
+#include "qualmesh/plc_io.h"
 
 namespace qualmesh::io_detail {
 
@@ -35,20 +36,44 @@ std::string link_note(const std::string& path) {
 
 struct Descriptor {
   int fd;
+  explicit Descriptor(int f) : fd(f) {}
+  Descriptor(Descriptor&& other) noexcept : fd(other.fd) { other.fd = -1; }
+  Descriptor(const Descriptor&) = delete;
   ~Descriptor() {
     if (fd >= 0) close(fd);
   }
 };
 
-}  // namespace
-
-std::string read_regular_file(const std::string& path) {
+// Opens `path` without blocking and refuses what is not a regular file; the descriptor and its size.
+Descriptor open_regular(const std::string& path, off_t& size) {
   Descriptor file{open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   if (file.fd < 0) throw InputError(ErrorCode::Io, std::string("cannot open file: ") + std::strerror(errno), path);
   struct stat st;
   if (fstat(file.fd, &st) != 0) throw InputError(ErrorCode::Io, std::string("cannot stat file: ") + std::strerror(errno), path);
   if (!S_ISREG(st.st_mode)) throw InputError(ErrorCode::Io, kind_of(st.st_mode) + link_note(path), path);
-  std::string data(static_cast<std::size_t>(st.st_size), '\0');
+  size = st.st_size;
+  return file;
+}
+
+}  // namespace
+
+void require_regular_file(const std::string& path) {
+  off_t size = 0;
+  (void)open_regular(path, size);
+}
+
+std::string as_text(std::string bytes) {
+  if (bytes.size() >= 3 && bytes.compare(0, 3, "\xEF\xBB\xBF") == 0) bytes.erase(0, 3);
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    if (bytes[i] == '\r' && (i + 1 == bytes.size() || bytes[i + 1] != '\n')) bytes[i] = '\n';
+  }
+  return bytes;
+}
+
+std::string read_regular_file(const std::string& path) {
+  off_t size = 0;
+  Descriptor file = open_regular(path, size);
+  std::string data(static_cast<std::size_t>(size), '\0');
   std::size_t done = 0;
   while (done < data.size()) {
     const ssize_t n = read(file.fd, &data[done], data.size() - done);
@@ -62,3 +87,7 @@ std::string read_regular_file(const std::string& path) {
 }
 
 }  // namespace qualmesh::io_detail
+
+namespace qualmesh {
+void require_regular_input_file(const std::string& path) { io_detail::require_regular_file(path); }
+}  // namespace qualmesh

@@ -28,8 +28,9 @@ TetMesh read_tet_mesh(const std::string& path) {
 
 namespace io {
 
-// Regular files only, at most their size (file_read.h: FIFOs, directories, /dev/zero refused).
-std::string read_whole_file(const std::string& path) { return io_detail::read_regular_file(path); }
+// Regular files only, at most their size (file_read.h: FIFOs, directories, /dev/zero refused); every mesh format
+// read is text, so a byte order mark goes and CR-only line ends become line feeds (io_detail::as_text).
+std::string read_whole_file(const std::string& path) { return io_detail::as_text(io_detail::read_regular_file(path)); }
 
 void check_mesh_indices(const TetMesh& mesh, const std::string& file) {
   const Index n = static_cast<Index>(mesh.points.size());

@@ -12,17 +12,15 @@
 //                  "! ----- names for boundaries -----", "$ Face<m> = m".
 // Bodies and boundary tags must be positive: a label <= 0 gets a fresh number above every positive label (its name
 // in mesh.names still says which group it is). Edges (Edge<e>) are not written: a 3D Elmer mesh's boundary elements
-// are its faces. Ids are 1-based; nodes keep TetMesh's order. The directory is written under a temporary name and
-// renamed into place; an existing directory of that name is replaced only once the new one is complete.
+// are its faces. Ids are 1-based; nodes keep TetMesh's order. The directory is one OutputSet (atomic_file.h): written
+// under a temporary name and renamed into place; an existing directory of that name is replaced only once the new one
+// is complete, and stays as it was when anything fails (or a signal stops the run).
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
 #include <functional>
-#include <fstream>
 #include <map>
-#include <random>
 
+#include "atomic_file.h"
 #include "mesh_groups.h"
 #include "mesh_io_internal.h"
 
@@ -41,22 +39,6 @@ std::map<int, int> elmer_numbers(const std::vector<int>& labels) {
   }
   for (auto& [label, number] : numbers) number = label > 0 ? label : ++max_label;
   return numbers;
-}
-
-std::string sibling_name(const fs::path& target, const char* tag) {
-  static std::mt19937_64 generator{std::random_device{}()};
-  static const char* digits = "0123456789abcdefghijklmnopqrstuvwxyz";
-  std::string name = target.string() + tag;
-  for (int i = 0; i < 8; ++i) name += digits[generator() % 36];
-  return name;
-}
-
-void write_one(const fs::path& path, const std::string& target, const std::function<void(std::ostream&)>& fill) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw InputError(ErrorCode::Io, "cannot create " + path.filename().string() + ": " + std::strerror(errno), target);
-  fill(out);
-  out.flush();
-  if (!out) throw InputError(ErrorCode::Io, "write failed (disk full?)", target);
 }
 
 }  // namespace
@@ -99,19 +81,18 @@ void write_elmer(const TetMesh& mesh, const std::string& path) {
     }
   }
 
-  const std::string temp = sibling_name(target, ".tmp-");
-  std::error_code ec;
-  if (!fs::create_directory(temp, ec)) throw InputError(ErrorCode::Io, "cannot create directory " + temp + ": " + ec.message(), path);
-  try {
+  OutputSet output;
+  const std::string temp = output.write_directory(clean);
+  {
     const int tet_type = quadratic ? 510 : 504, tri_type = quadratic ? 306 : 303;
-    write_one(fs::path(temp) / "mesh.header", path, [&](std::ostream& out) {
+    output.write_inside(temp, "mesh.header", path, [&](std::ostream& out) {
       out << mesh.points.size() << ' ' << mesh.tets.size() << ' ' << mesh.faces.size() << '\n';
       const int num_types = (mesh.tets.empty() ? 0 : 1) + (mesh.faces.empty() ? 0 : 1);
       out << num_types << '\n';
       if (!mesh.tets.empty()) out << tet_type << ' ' << mesh.tets.size() << '\n';
       if (!mesh.faces.empty()) out << tri_type << ' ' << mesh.faces.size() << '\n';
     });
-    write_one(fs::path(temp) / "mesh.nodes", path, [&](std::ostream& out) {
+    output.write_inside(temp, "mesh.nodes", path, [&](std::ostream& out) {
       for (std::size_t i = 0; i < mesh.points.size(); ++i) {
         out << i + 1 << " -1";
         for (double c : mesh.points[i]) {
@@ -121,7 +102,7 @@ void write_elmer(const TetMesh& mesh, const std::string& path) {
         out << '\n';
       }
     });
-    write_one(fs::path(temp) / "mesh.elements", path, [&](std::ostream& out) {
+    output.write_inside(temp, "mesh.elements", path, [&](std::ostream& out) {
       for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         out << t + 1 << ' ' << bodies.at(regions[t]) << ' ' << tet_type;
         for (Index v : mesh.tets[t]) out << ' ' << v + 1;
@@ -131,7 +112,7 @@ void write_elmer(const TetMesh& mesh, const std::string& path) {
         out << '\n';
       }
     });
-    write_one(fs::path(temp) / "mesh.boundary", path, [&](std::ostream& out) {
+    output.write_inside(temp, "mesh.boundary", path, [&](std::ostream& out) {
       for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
         const auto& v = mesh.faces[f];
         const auto& p = parents.at(key(v[0], v[1], v[2]));
@@ -143,29 +124,14 @@ void write_elmer(const TetMesh& mesh, const std::string& path) {
         out << '\n';
       }
     });
-    write_one(fs::path(temp) / "mesh.names", path, [&](std::ostream& out) {
+    output.write_inside(temp, "mesh.names", path, [&](std::ostream& out) {
       out << "! ----- names for bodies -----\n";
       for (const auto& [label, number] : bodies) out << "$ " << group_name("Solid", label) << " = " << number << '\n';
       out << "! ----- names for boundaries -----\n";
       for (const auto& [label, number] : tags) out << "$ " << group_name("Face", label) << " = " << number << '\n';
     });
-    std::string old;
-    if (fs::exists(target)) {
-      old = sibling_name(target, ".old-");
-      fs::rename(target, old, ec);
-      if (ec) throw InputError(ErrorCode::Io, "cannot move the existing directory aside: " + ec.message(), path);
-    }
-    fs::rename(temp, target, ec);
-    if (ec) {
-      if (!old.empty()) fs::rename(old, target);
-      throw InputError(ErrorCode::Io, "cannot rename the temporary directory into place: " + ec.message(), path);
-    }
-    if (!old.empty()) fs::remove_all(old, ec);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove_all(temp, ignored);
-    throw;
   }
+  output.commit();
 }
 
 }  // namespace qualmesh::io

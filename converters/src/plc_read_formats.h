@@ -16,11 +16,18 @@ struct SurfaceSoup {
   std::vector<Point3> vertices;
   std::vector<std::vector<Index>> faces;
   std::vector<int> markers;  // one per face
+  // Where each face is in the file, for messages: its 1-based line (empty or 0: not known, binary STL), and the
+  // number the format gives the first face (OFF counts from 0, the others from 1) and the word for a face.
+  std::vector<long> lines;
+  long first_face_number = 1;
+  const char* face_word = "face";
 };
 
 // Merges exactly duplicated vertices (first occurrence order), drops unused vertices, builds one facet per face
 // and, when options.merge_coplanar, merges coplanar facets. Throws InputError(Empty) naming `path` when there is no
-// face.
+// face, and InputError(DegenerateFacet) for a face that stays a facet of its own (not merged away) although it
+// repeats a vertex or has all its corners exactly collinear (zero area), naming the face as the file numbers it,
+// its line and its corners' coordinates (issue 18 item 7: validation would name it by its merged facet id).
 Plc finish_surface(SurfaceSoup soup, const std::string& path, const ReadOptions& options);
 
 Plc read_tetgen_poly(const std::string& path);   // .poly and .smesh (by extension)
@@ -32,5 +39,15 @@ Plc read_medit(const std::string& path, const ReadOptions& options);
 
 // Lower-case extension with the dot (".poly"), or "".
 std::string lower_extension(const std::string& path);
+
+// The scale QualMesh computes at (issue 18 item 7): facet areas, normals and the refinement's constructions take up
+// to fourth powers of coordinates, so beyond these a model's numbers overflow to infinity or underflow to zero and
+// every facet "encloses no area". A vertex farther than kMaxCoordinate from the origin in any coordinate, or a model
+// whose largest bounding-box side is below kMinExtent, is refused: InputError(NonFinite) naming the vertex (by its
+// coordinates) or the extent, the limit and "overflow" or "underflow". Measured: a unit cube scaled to 1e70 or 1e-80
+// meshes; 1e80 or 1e-90 "enclose no area".
+inline constexpr double kMaxCoordinate = 1e70;
+inline constexpr double kMinExtent = 1e-80;
+void refuse_out_of_scale(const std::vector<Point3>& vertices, const std::string& path);
 
 }  // namespace qualmesh::plc_io

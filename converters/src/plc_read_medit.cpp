@@ -103,7 +103,9 @@ Plc read_medit(const std::string& path, const ReadOptions& options) {
       face.push_back(static_cast<Index>(ref - 1));
     }
     soup.faces.push_back(std::move(face));
+    soup.lines.push_back(pending[f].line);
   }
+  soup.face_word = "surface element";  // triangles, then quadrilaterals, numbered together from 1
   if (soup.faces.empty()) {
     throw InputError(ErrorCode::Empty, "no 'Triangles' or 'Quadrilaterals' section: the file holds no surface", path);
   }

@@ -66,7 +66,7 @@ Plc read_obj(const std::string& path, const ReadOptions& options) {
                keyword == "parm" || keyword == "end" || keyword == "usemap" || keyword == "maplib") {
       continue;
     } else {
-      scanner.fail(ErrorCode::Parse, "unknown OBJ statement '" + std::string(keyword.substr(0, 40)) + "'");
+      scanner.fail(ErrorCode::Parse, "unknown OBJ statement " + quoted(keyword));
     }
   }
   for (std::size_t f = 0; f < soup.faces.size(); ++f) {
@@ -80,6 +80,7 @@ Plc read_obj(const std::string& path, const ReadOptions& options) {
     }
   }
   if (soup.faces.empty()) throw InputError(ErrorCode::Empty, "the file holds no faces", path);
+  soup.lines = std::move(face_lines);
   return finish_surface(std::move(soup), path, options);
 }
 

@@ -93,7 +93,9 @@ Plc read_off(const std::string& path, const ReadOptions& options) {
     }
     soup.faces.push_back(std::move(face));
     soup.markers.push_back(0);
+    soup.lines.push_back(scanner.line());
   }
+  soup.first_face_number = 0;
   return finish_surface(std::move(soup), path, options);
 }
 

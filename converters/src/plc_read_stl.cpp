@@ -65,6 +65,7 @@ SurfaceSoup read_binary(const std::string& data, const std::string& path) {
     soup.faces.push_back(std::move(face));
     soup.markers.push_back(0);
   }
+  soup.face_word = "triangle";
   return soup;
 }
 
@@ -98,6 +99,7 @@ SurfaceSoup read_ascii(std::string data, const std::string& path) {
       if (word != "facet") {
         scanner.fail(ErrorCode::Parse, "expected 'facet' or 'endsolid', got '" + std::string(token.substr(0, 40)) + "'");
       }
+      soup.lines.push_back(scanner.line());
       expect_word(scanner, "normal", "after 'facet'");
       for (int k = 0; k < 3; ++k) {
         // Normals are recomputed from the vertices; a NaN normal (common in exported files) is harmless.
@@ -137,11 +139,12 @@ SurfaceSoup read_ascii(std::string data, const std::string& path) {
     }
   }
   if (num_solids == 0) throw InputError(ErrorCode::Empty, "the file is empty", path);
+  soup.face_word = "facet";
   return soup;
 }
 
 bool starts_with_solid(const std::string& data) {
-  std::size_t i = 0;
+  std::size_t i = data.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;  // a UTF-8 byte order mark
   while (i < data.size() && (data[i] == ' ' || data[i] == '\t' || data[i] == '\r' || data[i] == '\n')) ++i;
   return to_lower(std::string_view(data).substr(i, 5)) == "solid";
 }

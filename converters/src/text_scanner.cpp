@@ -17,7 +17,7 @@ namespace qualmesh::plc_io {
 std::string read_whole_file(const std::string& path) { return io_detail::read_regular_file(path); }
 
 TextScanner::TextScanner(std::string text, std::string path, bool hash_comments)
-    : text_(std::move(text)), path_(std::move(path)), hash_comments_(hash_comments) {}
+    : text_(io_detail::as_text(std::move(text))), path_(std::move(path)), hash_comments_(hash_comments) {}
 
 namespace {
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v' || c == '\0'; }
@@ -86,13 +86,24 @@ void TextScanner::fail(ErrorCode code, const std::string& message, ElementIds id
 }
 
 namespace {
+}  // namespace
+
 std::string quoted(std::string_view token) {
   std::string shown;
-  for (char c : token.substr(0, 40)) shown += (static_cast<unsigned char>(c) < 32 || c == 127) ? '?' : c;
+  for (char c : token.substr(0, 40)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 32 && byte < 127) {
+      shown += c;
+    } else {  // control and non-ASCII bytes as \xNN: a binary file's bytes never reach the terminal raw
+      static const char* hex = "0123456789abcdef";
+      shown += "\\x";
+      shown += hex[byte >> 4];
+      shown += hex[byte & 15];
+    }
+  }
   if (token.size() > 40) shown += "...";
   return "'" + shown + "'";
 }
-}  // namespace
 
 bool parse_double(std::string_view token, double& value) {
   if (token.empty()) return false;

@@ -58,6 +58,10 @@ class TextScanner {
 bool parse_double(std::string_view token, double& value);
 bool parse_integer(std::string_view token, long long& value);
 
+// A token as messages show it: in single quotes, at most 40 bytes (then "..."), every byte that is not printable
+// ASCII written as \xNN.
+std::string quoted(std::string_view token);
+
 // Lower-case copy (ASCII).
 std::string to_lower(std::string_view text);
 

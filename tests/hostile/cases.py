@@ -6,6 +6,7 @@ no mesh, no temporary file. Placeholders in argv:
   {in}/NAME         a file of inputs.py's INPUTS, written for the run
   {small}/NAME      tests/data/small/NAME
   {malformed}/NAME  tests/data/malformed/NAME (the readers' corpus; EXPECTED.tsv holds its messages)
+  {shared}/PATH      ../shared/PATH (the third-party models; cases tagged needs:shared skip without it)
   {out}             the output mesh: OUT/mesh.vtu in an empty folder OUT
   {outdir}          that folder
 The runner is tests/python/test_hostile.py; each case runs under a time limit (TIMEOUT_S, or the case's own) and,
@@ -20,6 +21,9 @@ Categories (issue 18, "What hostile input does today"):
   ok-*       what works and must keep working (exit 0, a mesh written, nothing on stderr)
   far-*      5. models far from the origin: `check` and `mesh` work as at the origin
   limit-*    3. resource limits: exit 4, the limit named, nothing written unless --allow-partial (tag "writes")
+  out-atomic-*, out-signal-*   4. output all or nothing: failed writes keep the old files, signals leave no temporary
+  msg-*      7. messages: byte order mark, CR line ends, directories, random bytes, degenerate faces, overflow,
+             empty .scad, --sewing-tolerance
 """
 import re
 from dataclasses import dataclass, field
@@ -77,10 +81,7 @@ INVALID_PLCS = [
     ("overlapping-cubes", "overlapping_cubes.off",
      r"error\[intersection\]: facets 1 and 8 intersect \(not in a shared vertex or edge\)"),
     ("self-intersecting-stl", "self_intersecting.stl", r"error\[intersection\]: facets 2 and 4 intersect"),
-    ("repeated-vertex-facet", "degenerate_facet.off",
-     r"error\[degenerate-facet\]: polygon 0 of facet 6 repeats vertex 0"),
-    ("collinear-triangle", "collinear_triangle.off",
-     r"error\[degenerate-facet\]: polygon 0 of facet 5 has zero area \(all its vertices are collinear\)"),
+    # a face repeating a vertex or of zero area: refused by the reader with the face's number and line (msg-*)
     ("single-triangle", "single_triangle.off", r"error\[open-boundary\]: edge \(0, 1\) of facet 0 is on no other"),
     ("flat-square", "flat_square.off", r"error\[open-boundary\]: edge \(0, 1\) of facet 0 is on no other facet"),
 ]
@@ -290,3 +291,112 @@ case("ok-limits-generous", ["mesh", BOX, "-o", "{out}", "--time-limit", "60", "-
 
 case("far-check-cube-1e9-vertex-off", ["check", "{in}/cube_mesh_1e9_bent.node", "--ref", "{in}/cube_offset_1e9.off"],
      3, r"")
+
+# ---------------------------------------------------------------------------------------------------------------
+# out-atomic-*, out-signal-*: output lands whole or not at all (issue 18 item 4). The TetGen set (.node .ele .face)
+# and the Elmer directory are written to temporaries and renamed together; a failure leaves the old files exactly as
+# they were (tag file:, checked by the runner), and SIGINT, SIGTERM, SIGHUP during the write leave no "*.tmp-*"
+# (the process ends by the signal: exit -N here, 128 + N in a shell). SIGXFSZ (`ulimit -f`) makes the write fail:
+# exit 4, a resource limit. Killing qualmesh while `openscad` renders kills openscad and removes its folder.
+OLD_SET = ["file:mesh.node=old node", "file:mesh.ele=old ele", "file:mesh.face=old face"]
+FILE_SIZE = r"error\[io\]: write failed: the file size limit \(ulimit -f\) was reached"
+case("out-atomic-tetgen-face-is-a-folder", ["convert", "{in}/small_mesh.node", "{outdir}/mesh.node"], 2,
+     r"mesh\.face: error\[io\]: is a directory: nothing written", tags=["file:mesh.node=old node",
+                                                                        "file:mesh.ele=old ele", "mkdir:mesh.face"])
+case("out-atomic-tetgen-file-size-limit", ["convert", "{in}/grid.node", "{outdir}/mesh.node"], 4,
+     r"mesh\.(node|ele|face): " + FILE_SIZE, tags=OLD_SET + ["fsize:200000"])
+case("out-atomic-tetgen-file-size-limit-on-ele", ["convert", "{in}/grid.node", "{outdir}/mesh.node"], 4,
+     r"mesh\.ele: " + FILE_SIZE, tags=OLD_SET + ["fsize:2000000"])  # .node fits (about 1 MB), .ele does not
+case("out-atomic-tetgen-replaces-old-set", ["convert", "{in}/small_mesh.node", "{outdir}/mesh.node"], 0, r"^$",
+     tags=OLD_SET + ["replaces"])
+case("out-atomic-mesh-tetgen-file-size-limit", ["mesh", "{in}/cube.off", "-o", "{outdir}/mesh.node",
+                                                "--max-edge", "0.1"], 4, FILE_SIZE, tags=OLD_SET + ["fsize:20000"])
+case("out-atomic-vtu-file-size-limit", ["convert", "{in}/grid.node", "{outdir}/mesh.vtu"], 4, r"mesh\.vtu: " + FILE_SIZE,
+     tags=["file:mesh.vtu=old vtu", "fsize:100000"])
+case("out-atomic-elmer-file-size-limit", ["convert", "{in}/grid.node", "{outdir}/mesh.elmer"], 4,
+     r"mesh\.elmer: error\[io\]: mesh\.(nodes|elements|boundary): write failed: the file size limit",
+     tags=["file:mesh.elmer/mesh.header=old header", "file:mesh.elmer/mesh.nodes=old nodes", "fsize:100000"])
+case("out-atomic-elmer-replaces-old-directory", ["convert", "{in}/small_mesh.node", "{outdir}/mesh.elmer"], 0, r"^$",
+     tags=["file:mesh.elmer/mesh.header=old header", "replaces"])
+case("out-atomic-elmer-mesh-replaces-old-directory", ["mesh", BOX, "-o", "{outdir}/mesh.elmer"], 0, r"^$",
+     tags=["file:mesh.elmer/mesh.header=old header", "replaces"])
+case("out-atomic-elmer-over-a-file", ["convert", "{in}/small_mesh.node", "{outdir}/mesh.elmer"], 2,
+     r"mesh\.elmer: error\[io\]: exists and is not a directory", tags=["file:mesh.elmer=a file"])
+for sig, code in [("INT", -2), ("TERM", -15), ("HUP", -1)]:
+    case(f"out-signal-{sig.lower()}-vtu", ["convert", "{in}/grid.node", "{outdir}/mesh.vtu"], code, r"^$",
+         tags=[f"signal:{sig}", "file:mesh.vtu=old vtu"])
+    case(f"out-signal-{sig.lower()}-tetgen", ["convert", "{in}/grid.node", "{outdir}/mesh.node"], code, r"^$",
+         tags=[f"signal:{sig}"] + OLD_SET)
+    case(f"out-signal-{sig.lower()}-elmer", ["convert", "{in}/grid.node", "{outdir}/mesh.elmer"], code, r"^$",
+         tags=[f"signal:{sig}", "file:mesh.elmer/mesh.header=old header"])
+case("out-signal-term-msh", ["convert", "{in}/grid.node", "{outdir}/mesh.msh"], -15, r"^$", tags=["signal:TERM"])
+case("out-signal-term-inp", ["convert", "{in}/grid.node", "{outdir}/mesh.inp"], -15, r"^$", tags=["signal:TERM"])
+for sig, code in [("TERM", -15), ("INT", -2)]:
+    case(f"out-signal-{sig.lower()}-during-openscad", ["mesh", "{in}/slow.scad", "-o", "{out}"], code, r"^$",
+         tags=[f"scad-signal:{sig}", "needs:openscad"], timeout=60)
+
+# ---------------------------------------------------------------------------------------------------------------
+# msg-*: unclear messages made clear (issue 18 item 7).
+# A UTF-8 byte order mark and CR-only or CR LF line ends: read as any text file (the OBJ with a mark failed, CR-only
+# files gave "absurd count").
+for ext in ["obj", "off", "stl", "poly"]:
+    case(f"msg-bom-{ext}", ["mesh", f"{{in}}/bom.{ext}", "-o", "{out}"], 0, r"^$")
+    case(f"msg-cr-only-{ext}", ["mesh", f"{{in}}/cr_only.{ext}", "-o", "{out}"], 0, r"^$")
+    case(f"msg-crlf-{ext}", ["mesh", f"{{in}}/crlf.{ext}", "-o", "{out}"], 0, r"^$")
+case("msg-cr-only-line-numbers", ["mesh", "{in}/cr_only_bad_vertex.off", "-o", "{out}"], 2,
+     r"cr_only_bad_vertex\.off:5: error\[parse\]: expected a number for the z coordinate of vertex 2, got 'zz'")
+case("msg-bom-check-mesh", ["check", "{outdir}/bom.node"], 0, r"^$",
+     tags=["file:bom.node=\ufeff4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n",
+           "file:bom.ele=\ufeff1 4 0\n1 1 2 3 4\n"])
+# A directory: named as one (it was "the file is empty"), also for CAD inputs.
+case("msg-directory-stl", ["mesh", "{outdir}/dir.stl", "-o", "{out}"], 2,
+     r"dir\.stl: error\[io\]: is a directory, not a file", tags=["mkdir:dir.stl"])
+case("msg-directory-step", ["mesh", "{outdir}/dir.step", "-o", "{out}"], 2,
+     r"dir\.step: error\[io\]: is a directory, not a file", tags=["mkdir:dir.step"])
+case("msg-fifo-step", ["info", "{outdir}/in.step"], 2, r"in\.step: error\[io\]: is a FIFO \(named pipe\)",
+     tags=["mkfifo:in.step"], timeout=5)
+case("msg-directory-scad", ["mesh", "{outdir}/dir.scad", "-o", "{out}"], 2,
+     r"dir\.scad: error\[io\]: is a directory, not a file", tags=["mkdir:dir.scad"])
+# Random bytes: quoted as \xNN (the runner refuses any raw control or non-UTF-8 byte on stderr).
+RAW = r"\\x[0-9a-f]{2}"
+for file, pattern in [("random_bytes.obj", r"random_bytes\.obj:1: error\[parse\]: expected a number for the x "
+                                           r"coordinate of vertex 1, got '" + RAW),
+                      ("random_bytes.off", r"random_bytes\.off:\d+: error\[parse\]: .*" + RAW),
+                      ("random_bytes.stl", r"random_bytes\.stl:\d+: error\[parse\]: .*" + RAW)]:
+    case(f"msg-random-bytes-{file.split('.')[1]}", ["mesh", "{in}/" + file, "-o", "{out}"], 2, pattern)
+for file in ["random_bytes.inp", "random_bytes.msh", "random_bytes.mesh"]:
+    case(f"msg-random-bytes-check-{file.split('.')[1]}", ["check", "{in}/" + file], 2, r"error\[(parse|unsupported)\]")
+# Degenerate faces: named by the face number as the file gives it, its line and corners (it was the merged facet id).
+DEGENERATE = [("repeated-vertex-face", "degenerate_facet.off",
+               r"degenerate_facet\.off:17: error\[degenerate-facet\]: face 6 repeats the vertex at \(0, 0, 0\) "
+               r"\(its corners: \(0, 0, 0\), \(1, 0, 0\), \(1, 1, 0\), \(0, 1, 0\), \(0, 0, 0\)\)"),
+              ("collinear-triangle-face", "collinear_triangle.off",
+               r"collinear_triangle\.off:17: error\[degenerate-facet\]: face 5 has zero area: its corners "
+               r"\(0, 0, 0\), \(1, 0, 0\), \(0\.5, 0, 0\) are collinear")]
+for name, file, pattern in DEGENERATE:
+    case(f"msg-{name}", ["mesh", "{in}/" + file, "-o", "{out}"], 2, pattern)
+    case(f"msg-{name}-info", ["info", "{in}/" + file], 2, pattern)
+# Coordinates whose powers overflow or underflow: said so (they were "encloses no area" or "has zero area").
+OVERFLOW = r"error\[non-finite\]: the vertex at \([^)]*\) is too far out to compute with \(overflow"
+UNDERFLOW = r"error\[non-finite\]: the model spans only [0-9.e+-]+ .*too small to compute with \(underflow"
+for name, pattern in [("1e308", OVERFLOW), ("1e100", OVERFLOW), ("minus_1e80", OVERFLOW), ("1e-300", UNDERFLOW),
+                      ("1e-100", UNDERFLOW)]:
+    case(f"msg-scale-{name.replace('_', '-')}", ["mesh", f"{{in}}/cube_scaled_{name}.off", "-o", "{out}"], 2, pattern)
+    case(f"msg-scale-{name.replace('_', '-')}-info", ["info", f"{{in}}/cube_scaled_{name}.off"], 2, pattern)
+case("msg-scale-offset-1e75", ["mesh", "{in}/cube_offset_1e75.off", "-o", "{out}"], 2, OVERFLOW)
+case("ok-scale-1e60", ["mesh", "{in}/cube_scaled_1e60.off", "-o", "{out}"], 0, r"^$")
+case("ok-scale-1e-60", ["mesh", "{in}/cube_scaled_1e-60.off", "-o", "{out}"], 0, r"^$")
+# An empty .scad: said so (it was "Geometries in cache: 1").
+case("msg-scad-empty", ["mesh", "{in}/empty.scad", "-o", "{out}"], 2,
+     r"empty\.scad: error\[empty\]: the file is empty: it describes no object")
+case("msg-scad-blank", ["info", "{in}/blank.scad"], 2, r"blank\.scad: error\[empty\]: the file is empty")
+case("msg-scad-nothing-drawn", ["mesh", "{in}/comment_only.scad", "-o", "{out}"], 2,
+     r"comment_only\.scad: error\[empty\]: the file describes no object \(OpenSCAD: \"Current top level object is "
+     r"empty\.\"\)", tags=["needs:openscad"], timeout=60)
+# --sewing-tolerance, which the "stays open" message suggests, exists and is range-checked.
+for value, kind in [("0", OUT_OF_RANGE), ("-1", OUT_OF_RANGE), ("nan", NAN), ("inf", NOT_FINITE), ("abc", NOT_A_NUMBER)]:
+    case(f"opt--sewing-tolerance-{_slug(value)}", ["mesh", BOX, "-o", "{out}", f"--sewing-tolerance={value}"], 2,
+         rf"^--sewing-tolerance: '{re.escape(value)}' {kind}: expected a finite number" +
+         (r" > 0 \(model units; leave the option out for the automatic tolerance\)" if kind == OUT_OF_RANGE else ""))
+case("ok-sewing-tolerance-cad", ["info", "{shared}/data/cad/part.step", "--sewing-tolerance", "1e-3"], 0, r"^$",
+     tags=["needs:shared"], timeout=60)

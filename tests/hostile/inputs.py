@@ -170,9 +170,81 @@ def _prism(n):
 INPUTS["prism_2000.off"] = _prism(2000)
 
 
+# ---------------------------------------------------------------------------------------------------------------
+# Issue 18 item 7, unclear messages made clear: a UTF-8 byte order mark and CR-only or CR LF line ends read as plain
+# text; random bytes in a text file; coordinates whose powers overflow or underflow; empty OpenSCAD files.
+BOM = b"\xef\xbb\xbf"
+_cube_obj = "".join(f"v {x} {y} {z}\n" for x, y, z in CUBE) + "".join(
+    "f " + " ".join(str(i + 1) for i in q) + "\n" for q in CUBE_QUADS)
+INPUTS["bom.obj"] = BOM + _cube_obj.encode()
+INPUTS["bom.off"] = BOM + off(CUBE, CUBE_QUADS).encode()
+INPUTS["bom.stl"] = BOM + ascii_stl(triangles_of(CUBE, CUBE_QUADS)).encode()
+INPUTS["bom.poly"] = BOM + poly(CUBE, CUBE_QUADS).encode()
+for _ext, _text in [("off", off(CUBE, CUBE_QUADS)), ("obj", _cube_obj), ("poly", poly(CUBE, CUBE_QUADS)),
+                    ("stl", ascii_stl(triangles_of(CUBE, CUBE_QUADS)))]:
+    INPUTS[f"cr_only.{_ext}"] = _text.replace("\n", "\r")
+    INPUTS[f"crlf.{_ext}"] = _text.replace("\n", "\r\n")
+# a CR-only file with an error: its line number counts CRs as line ends (the bad vertex is on line 5)
+INPUTS["cr_only_bad_vertex.off"] = off(CUBE, CUBE_QUADS).replace("1.0 1.0 0.0", "1.0 1.0 zz", 1).replace("\n", "\r")
+_rng_state = [20261201]
+
+
+def _random_bytes(n):
+    """Deterministic bytes (a linear congruential generator), escape (0x1b) and bell (0x07) included."""
+    out = bytearray()
+    for _ in range(n):
+        _rng_state[0] = (_rng_state[0] * 1103515245 + 12345) & 0x7FFFFFFF
+        out.append((_rng_state[0] >> 16) & 0xFF)
+    return bytes(out)
+
+
+INPUTS["random_bytes.obj"] = b"v \x1b[31m\x07" + _random_bytes(200)
+INPUTS["random_bytes.off"] = b"OFF\n\x9b\x1b]0;pwned\x07" + _random_bytes(200)
+# under 84 bytes and without NUL, so that it is read as ASCII STL
+INPUTS["random_bytes.stl"] = b"solid x\n facet \xff\xfe\x1b[2J" + _random_bytes(60).replace(b"\0", b"\x01")
+INPUTS["random_bytes.inp"] = b"*NODE\n1, \x1b[31m\x07" + _random_bytes(100)
+INPUTS["random_bytes.msh"] = b"$MeshFormat\n\x1b[2J\xc3" + _random_bytes(100)
+INPUTS["random_bytes.mesh"] = b"\x1b[2J\xc3\x28" + _random_bytes(100)
+for _name, _k in [("1e308", 1e308), ("1e100", 1e100), ("minus_1e80", -1e80), ("1e-300", 1e-300),
+                  ("1e-100", 1e-100), ("1e60", 1e60), ("1e-60", 1e-60)]:
+    INPUTS[f"cube_scaled_{_name}.off"] = off([(x * _k, y * _k, z * _k) for x, y, z in CUBE], CUBE_QUADS)
+# far out but small: 1e75 away, 1 wide
+INPUTS["cube_offset_1e75.off"] = off(moved(CUBE, (1e75, 0, 0)), CUBE_QUADS)
+INPUTS["empty.scad"] = ""
+INPUTS["blank.scad"] = "  \n\t\n"
+INPUTS["comment_only.scad"] = "// nothing is drawn here\nmodule unused() { cube(1); }\n"
+# Renders for well over a minute (CGAL unions of spheres): the run is stopped while openscad works on it.
+INPUTS["slow.scad"] = "union() { for (i = [0:40]) translate([i * 0.7, 0, 0]) sphere(r = 1, $fn = 48); }\n"
+
+
+def _grid_mesh(n):
+    """A structured mesh of the unit cube: n^3 cells of Kuhn's six tetrahedra each (6 n^3 tets), as .node/.ele."""
+    step = 1.0 / n
+    vertices = [(i * step, j * step, k * step) for k in range(n + 1) for j in range(n + 1) for i in range(n + 1)]
+    tets = []
+    kuhn = _kuhn_tets()
+
+    def vid(i, j, k):
+        return i + (n + 1) * (j + (n + 1) * k)
+    for k in range(n):
+        for j in range(n):
+            for i in range(n):
+                corner = [vid(i + x, j + y, k + z) for x, y, z in CUBE]
+                tets.extend([corner[a] for a in t] for t in kuhn)
+    return tetgen_mesh(vertices, tets)
+
+
+# 162000 tets: a .vtu of some 10 MB, written for long enough that a signal can be sent in the middle of the write
+INPUTS["grid.node"], INPUTS["grid.ele"] = _grid_mesh(30)
+INPUTS["small_mesh.node"], INPUTS["small_mesh.ele"] = tetgen_mesh(CUBE, _kuhn_tets())
+
+
 def write_inputs(folder):
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    for name, text in INPUTS.items():
-        (folder / name).write_text(text)
+    for name, data in INPUTS.items():
+        if isinstance(data, bytes):
+            (folder / name).write_bytes(data)
+        else:
+            (folder / name).write_text(data, newline="")  # CR and CR LF line ends as given
     return folder

@@ -35,6 +35,11 @@ Plc read_plc(const std::string& path, const ReadOptions& options = {});
 // True when the extension of `path` is one that read_plc() accepts.
 bool is_plc_path(const std::string& path);
 
+// Throws InputError(Io) naming `path` unless it is a regular file (symbolic links followed): a directory, a FIFO, a
+// device is refused by what it is ("is a directory, not a file", ...), as read_plc() refuses it, without blocking
+// and without reading. For front ends whose own reader opens the file (the CAD formats).
+void require_regular_input_file(const std::string& path);
+
 // Writes `plc` as .poly, .smesh or .off (chosen by extension, case-insensitive) through a temporary file renamed
 // into place, so a failure leaves no partial file. Coordinates are written with round-trip precision.
 // What a format cannot hold throws InputError(Unsupported) naming the element, and nothing is written:
