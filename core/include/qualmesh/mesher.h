@@ -69,9 +69,10 @@ struct MeshOptions {
   bool sliver_insertion = true;
   // Last, beyond the paper (issue 16): where tetrahedra below sliver_angle_deg are left after extraction, their
   // vertices are moved (input vertices never; segment vertices along their segment, facet vertices within their
-  // facet) and flips are made inside regions away from boundary and internal faces, each only when the smallest
-  // dihedral angle of what it changes grows. Conformity stays exact; the touched tetrahedra (MeshStats::
-  // num_tets_improved) are no longer weighted Delaunay. Runs only with pump = true. false: the engine's mesh as is.
+  // facet), flips are made inside regions away from boundary and internal faces, and interior edges of slivers
+  // are split (a free vertex added), each only when the smallest dihedral angle of what it changes grows.
+  // Conformity stays exact; the touched tetrahedra (MeshStats::num_tets_improved) are no longer weighted Delaunay.
+  // Runs only with pump = true. false: the engine's mesh as is.
   bool improve = true;
 
   // Cancellation (issue 18, for --time-limit, a memory budget and the FreeCAD task panel): when set, polled every
@@ -139,6 +140,7 @@ struct MeshStats {
   std::size_t num_tets_improved = 0;          // output tetrahedra it changed (new by a flip, or a vertex moved)
   std::size_t num_improve_vertex_moves = 0;   // accepted vertex moves
   std::size_t num_improve_flips = 0;          // 2-3 flips and edge removals (n-to-2n-4, n = 3: 3-2 flips)
+  std::size_t num_improve_insertions = 0;     // interior edges split at a sliver (one vertex added each)
   double min_dihedral_before_improve_deg = 0; // over all tetrahedra as extracted, before the pass
   // Output tetrahedra not touching an acute input angle (MeshResult::tet_touches_acute_angle): the smallest
   // dihedral angle among them, and how many have one below MeshOptions::sliver_angle_deg.

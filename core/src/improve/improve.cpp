@@ -1,6 +1,9 @@
 // The improvement pass (improve.h; issue 16's last pass, after QUALMESH and extraction, beyond the paper):
-// vertex classification, smoothing of sliver vertices within their freedom, and the driver that alternates flips
-// (flips.cpp) and smoothing over the tetrahedra below the sliver angle, worst first.
+// vertex classification, smoothing of sliver vertices within their freedom, interior edge splits, and the driver
+// that tries flips (flips.cpp), then smoothing, then a split on each tetrahedron below the sliver angle, worst first.
+// The split is Klingner & Shewchuk's vertex insertion in its simplest form: a tetrahedron with two boundary faces
+// on a nearly flat crease (a cylinder's side) is flat whatever its boundary vertices do; splitting its interior edge
+// and moving the new vertex into the domain replaces it by two tetrahedra with one boundary face each.
 //
 // Smoothing follows the non-smooth optimisation of Freitag & Ollivier-Gooch (and Klingner & Shewchuk, 2007): the
 // objective is the smallest dihedral angle over the vertex's star; the ascent direction is the point of least norm
@@ -72,7 +75,8 @@ std::vector<Segment> extra_segments(const Plc& plc) {
     for (const auto& poly : f.polygons) {
       if (poly.size() == 2) extra.push_back({poly[0], poly[1], 0});
       if (poly.size() < 3) continue;
-      for (std::size_t i = 0; i < poly.size(); ++i) polygon_edges.push_back(sorted_edge(poly[i], poly[(i + 1) % poly.size()]));
+      for (std::size_t i = 0; i < poly.size(); ++i)
+        polygon_edges.push_back(sorted_edge(poly[i], poly[(i + 1) % poly.size()]));
     }
   std::sort(polygon_edges.begin(), polygon_edges.end());
   for (const Segment& s : plc.segments)
@@ -178,8 +182,8 @@ std::vector<VertexConstraint> classify_vertices(const TetMesh& mesh, const Plc& 
       bool one = true;
       for (Index f : faces) one = one && (mesh.face_facet.empty() ? -1 : mesh.face_facet[f]) == facet;
       const auto& f0 = mesh.faces[faces[0]];
-      Vec n = facet >= 0 && std::size_t(facet) < normals.size() ? normals[facet]
-                                                                : unit(face_normal(mesh.points[f0[0]], mesh.points[f0[1]], mesh.points[f0[2]]));
+      const Vec own = unit(face_normal(mesh.points[f0[0]], mesh.points[f0[1]], mesh.points[f0[2]]));
+      const Vec n = facet >= 0 && std::size_t(facet) < normals.size() ? normals[facet] : own;
       if (!one || norm(n) == 0) continue;
       bool planar = true;
       for (Index f : faces) {
@@ -357,6 +361,69 @@ class Smoother {
   std::size_t max_below_ = 0;
 };
 
+// Splits the interior edge uv of one region (no constraint face holds it, its ring closes, not protected) at its
+// midpoint and smooths the new vertex; keeps the split only when the smallest angle of the tets around the edge
+// grows, else undoes it completely (the point is removed again). Returns whether it kept the split.
+bool split_edge(WorkMesh& w, Smoother& smoother, std::vector<VertexConstraint>& constraints, Index u, Index v,
+                unsigned round) {
+  if (w.is_protected_edge(u, v)) return false;
+  std::vector<Index> around;
+  for (Index t : w.incident[u])
+    for (Index x : w.tets[t])
+      if (x == v) around.push_back(t);
+  if (around.size() < 3) return false;
+  std::vector<Index> ring;
+  double old_min = std::numeric_limits<double>::infinity();
+  for (Index t : around) {
+    if (w.region[t] != w.region[around[0]]) return false;
+    old_min = std::min(old_min, w.quality(t));
+    for (Index x : w.tets[t])
+      if (x != u && x != v) {
+        if (w.is_constraint_face(u, v, x)) return false;
+        ring.push_back(x);
+      }
+  }
+  // A closed ring: every ring vertex in exactly two tets around the edge.
+  std::sort(ring.begin(), ring.end());
+  for (std::size_t i = 0; i < ring.size(); i += 2)
+    if (i + 1 >= ring.size() || ring[i] != ring[i + 1] || (i + 2 < ring.size() && ring[i + 2] == ring[i])) return false;
+  const Point3 &pu = w.point(u), &pv = w.point(v);
+  const Index m = Index(w.points->size());
+  w.points->push_back({(pu[0] + pv[0]) / 2, (pu[1] + pv[1]) / 2, (pu[2] + pv[2]) / 2});
+  w.incident.emplace_back();
+  w.vertex_faces.emplace_back();
+  constraints.push_back({VertexFreedom::Interior, {0, 0, 0}});
+  const std::size_t first_new = w.tets.size();
+  for (Index t : around) {
+    w.kill_tet(t);
+    Tet4 a = w.tets[t], b = w.tets[t];
+    for (int k = 0; k < 4; ++k) {
+      if (a[k] == u) a[k] = m;
+      if (b[k] == v) b[k] = m;
+    }
+    w.add_tet(a, w.region[t]);
+    w.add_tet(b, w.region[t]);
+  }
+  bool valid = true;
+  for (std::size_t t = first_new; t < w.tets.size(); ++t) valid = valid && w.quality(Index(t)) >= 0;
+  if (valid) smoother.smooth(m, constraints[m], round);
+  double new_min = std::numeric_limits<double>::infinity();
+  for (std::size_t t = first_new; t < w.tets.size(); ++t) new_min = std::min(new_min, w.quality(Index(t)));
+  if (valid && new_min > old_min + 1e-9) return true;
+  // Undo: the new tets go (their ids stay dead), the old ones come back, the point is removed.
+  for (std::size_t t = first_new; t < w.tets.size(); ++t) w.kill_tet(Index(t));
+  w.tets.resize(first_new);
+  w.region.resize(first_new);
+  w.alive.resize(first_new);
+  w.touched.resize(first_new);
+  for (Index t : around) w.revive_tet(t);
+  w.points->pop_back();
+  w.incident.pop_back();
+  w.vertex_faces.pop_back();
+  constraints.pop_back();
+  return false;
+}
+
 double mesh_min_dihedral(const TetMesh& mesh, double threshold, std::size_t* below) {
   double q = mesh.tets.empty() ? 0 : 180;
   *below = 0;
@@ -389,7 +456,7 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
   res.num_below_after = res.num_below_before;
   if (res.num_below_before == 0) return res;
 
-  const std::vector<VertexConstraint> constraints = classify_vertices(mesh, plc);
+  std::vector<VertexConstraint> constraints = classify_vertices(mesh, plc);
   for (const VertexConstraint& c : constraints) {
     res.num_fixed += c.freedom == VertexFreedom::Fixed;
     res.num_on_segment += c.freedom == VertexFreedom::OnSegment;
@@ -453,15 +520,23 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
         else ++res.num_edge_removals;
         continue;
       }
-      if (!options.smoothing) continue;
       const Tet4 tv = w.tets[t];
-      for (Index v : tv) {
-        if (!smoother.smooth(v, constraints[v], unsigned(round))) continue;
-        ++changes;
-        ++res.num_vertex_moves;
-        moved[v] = 1;
-        if (w.quality(t) >= threshold) break;
-      }
+      if (options.smoothing)
+        for (Index v : tv) {
+          if (!smoother.smooth(v, constraints[v], unsigned(round))) continue;
+          ++changes;
+          ++res.num_vertex_moves;
+          moved[v] = 1;
+          if (w.quality(t) >= threshold) break;
+        }
+      if (!options.insertion || !w.alive[t] || w.quality(t) >= threshold) continue;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b)
+          if (w.alive[t] && split_edge(w, smoother, constraints, tv[a], tv[b], unsigned(round))) {
+            ++changes;
+            ++res.num_insertions;
+            moved.push_back(0);
+          }
     }
     if (changes == 0) break;
   }
@@ -493,7 +568,8 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
     }
     out.push_back(o);
   }
-  if (res.num_flips > 0) {
+  if (!mesh.weights.empty()) mesh.weights.resize(mesh.points.size(), 0.0);
+  if (res.num_flips > 0 || res.num_insertions > 0) {
     for (Out& o : out) o.v = canonical(o.v);
     std::sort(out.begin(), out.end(), [](const Out& a, const Out& b) { return a.v < b.v; });
   }

@@ -8,7 +8,8 @@
 // accepted when the worst tetrahedron of the star gets better) and exude_mesh_3 (Slivers_exuder); the topological
 // moves follow Shewchuk, "Two discrete optimization algorithms for the topological improvement of tetrahedral
 // meshes" (2002: edge removal by Klincsek's dynamic programme over the ring of an edge) and Klingner & Shewchuk,
-// "Aggressive tetrahedral mesh improvement" (2007: smoothing of the star's minimum quality plus flips).
+// "Aggressive tetrahedral mesh improvement" (2007: smoothing of the star's minimum quality plus flips; where both
+// fail, an interior edge of the sliver is split and the new free vertex smoothed, their vertex insertion).
 //
 // Conformity is exact by construction: an input vertex never moves; a vertex on an input segment moves only along
 // that segment's line, a vertex inside an input facet only within the facet's plane, with every tetrahedron of its
@@ -62,6 +63,9 @@ struct ImproveOptions {
   bool flips = true;
   // > 0: no flip makes a tetrahedron whose radius-edge ratio exceeds both this and the largest it replaces.
   double radius_edge_bound = 0;
+  // Where flips and moves leave a tet below the threshold: split one of its interior edges at its midpoint and move
+  // the new (free) vertex to the best place in its star; kept only when the smallest angle around the edge grows.
+  bool insertion = true;
   // Largest ring of an edge removal (the n-to-2n-4 flip); 3 is the 3-2 flip.
   int max_edge_ring = 7;
   // Polled once per bad tetrahedron; true stops the pass (the mesh stays valid).
@@ -72,6 +76,7 @@ struct ImproveResult {
   std::size_t num_tets_touched = 0;    // output tetrahedra that are new (flips) or have a moved vertex
   std::size_t num_vertex_moves = 0;    // accepted vertex moves (a vertex may move more than once)
   std::size_t num_vertices_moved = 0;  // distinct vertices moved
+  std::size_t num_insertions = 0;      // interior edges split (a new vertex each, appended to the points)
   std::size_t num_flips = 0;           // 2-3 flips plus edge removals
   std::size_t num_flips23 = 0;
   std::size_t num_edge_removals = 0;   // of which n = 3 are 3-2 flips
@@ -82,10 +87,11 @@ struct ImproveResult {
   std::size_t num_below_after = 0;
 };
 
-// Improves `mesh` in place: vertex moves within each vertex's freedom and flips inside regions, each accepted only
-// when the smallest dihedral angle of the tetrahedra it changes strictly increases (so the mesh's minimum never
-// decreases). Points keep their indices; faces, edges and weights are unchanged as lists (a face keeps its vertex
-// ids); tets are renumbered in extract.cpp's canonical order when a flip happened, with tet_region following.
+// Improves `mesh` in place: vertex moves within each vertex's freedom, flips inside regions and interior edge splits,
+// each accepted only when the smallest dihedral angle of the tetrahedra it changes strictly increases (so the mesh's
+// minimum never decreases). Points keep their indices (split vertices are appended, with weight 0 when the mesh has
+// weights); faces and edges are unchanged as lists (a face keeps its vertex ids); tets are renumbered in
+// extract.cpp's canonical order when a flip or split happened, with tet_region following.
 // `touches_acute` (may be null; one flag per tet) is kept aligned: a tet left as it was keeps its flag, a changed
 // one gets `shortest_edge_forced(u, w)` for its shortest edge uw (extract.cpp's criterion: that edge joins vertices
 // on input elements meeting at an acute angle), or 0 without the callback.

@@ -67,6 +67,11 @@ struct WorkMesh {
     for (Index v : t) incident[v].push_back(id);
     return id;
   }
+  // Undoes kill_tet (the tet keeps its id).
+  void revive_tet(Index id) {
+    alive[id] = 1;
+    for (Index v : tets[id]) incident[v].push_back(id);
+  }
   void kill_tet(Index id) {
     alive[id] = 0;
     for (Index v : tets[id]) {

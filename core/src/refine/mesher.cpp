@@ -71,18 +71,21 @@ void improve_extracted(detail::MeshState& s, MeshResult& result) {
   options.cancel = s.options.cancel;
   const detail::ImproveResult r = detail::improve_mesh(
       result.mesh, *s.plc, options, &result.tet_touches_acute_angle, [&](Index u, Index w) {
-        return engine_id[u] != kNoIndex && engine_id[w] != kNoIndex &&
-               detail::shortest_edge_forced_by_acute_angle(s, engine_id[u], engine_id[w]);
+        // A vertex the pass added (an edge split) lies in the volume: on no input element.
+        return u < engine_id.size() && w < engine_id.size() && engine_id[u] != kNoIndex &&
+               engine_id[w] != kNoIndex && detail::shortest_edge_forced_by_acute_angle(s, engine_id[u], engine_id[w]);
       });
   s.stats.num_tets_improved = r.num_tets_touched;
   s.stats.num_improve_vertex_moves = r.num_vertex_moves;
   s.stats.num_improve_flips = r.num_flips;
+  s.stats.num_improve_insertions = r.num_insertions;
   s.stats.min_dihedral_before_improve_deg = r.min_dihedral_before_deg;
   s.stats.seconds_improve = seconds_since(t);
   s.log_line("improve: " + std::to_string(r.num_tets_touched) + " tets touched, " +
              std::to_string(r.num_vertex_moves) + " vertex moves, " + std::to_string(r.num_flips) + " flips (" +
              std::to_string(r.num_flips23) + " 2-3, " + std::to_string(r.num_edge_removals) +
-             " edge removals); below " + std::to_string(options.sliver_angle_deg) + " deg: " +
+             " edge removals), " + std::to_string(r.num_insertions) + " edge splits; below " +
+             std::to_string(options.sliver_angle_deg) + " deg: " +
              std::to_string(r.num_below_before) + " -> " + std::to_string(r.num_below_after));
 }
 
