@@ -9,6 +9,7 @@
 //   - the after-insertion hooks queue what a new vertex encroaches, and every insertion reaches every level (the
 //     boundary stage recovers every subsegment and subfacet);
 //   - RefineParams and EncroachmentPolicy derive what the options say;
+//   - the same input gives the same mesh twice in one process, under either encroachment rule;
 //   - re-refining a refined mesh adds nothing (CGAL Mesh_3's test_meshing_utilities property).
 #include <gtest/gtest.h>
 
@@ -336,6 +337,25 @@ TEST(Levels, ParamsDerivedOnceFromTheOptions) {
   options.encroaching = MeshOptions::Encroaching::Steiner;
   EXPECT_FALSE(d::RefineParams::from(options).encroachment.paper());
   EXPECT_TRUE(d::RefineParams::from(options).encroachment.walks_to_centres());
+}
+
+// Determinism (house style, principle 7): the same input meshed twice in one process, with another input meshed in
+// between (a different heap), gives the same vertices, weights and tetrahedra under either encroachment rule.
+TEST(Levels, SameMeshTwiceInOneProcessUnderEitherRule) {
+  for (const auto rule : {MeshOptions::Encroaching::All, MeshOptions::Encroaching::Steiner}) {
+    MeshOptions options;
+    options.max_edge_length = 0.3;
+    options.encroaching = rule;
+    const Plc input = box({0, 0, 0}, {1, 2, 1});
+    const auto first = qualmesh::mesh_plc(input, options);
+    const auto other = qualmesh::mesh_plc(obtuse_tetrahedron(), options);
+    const auto second = qualmesh::mesh_plc(input, options);
+    ASSERT_FALSE(first.mesh.tets.empty());
+    EXPECT_EQ(first.mesh.points, second.mesh.points);
+    EXPECT_EQ(first.mesh.weights, second.mesh.weights);
+    EXPECT_EQ(first.mesh.tets, second.mesh.tets);
+    EXPECT_FALSE(other.mesh.tets.empty());
+  }
 }
 
 TEST(Levels, ReRefiningARefinedMeshAddsNothing) {
