@@ -3,7 +3,8 @@
 //  - the facets carry exactly the CAD face numbers 1..N, and the PLC is valid;
 //  - every node of a face's facets lies on that CAD face (OpenCASCADE's distance, to 1e-7 of the diagonal: nodes
 //    are surface points, not chord points);
-//  - halving --size multiplies the surface nodes by 2 to 8 and never lowers them; the volume mesh of the cylinder
+//  - halving --size multiplies the surface nodes by 1.5 to 8 (less than 4 where curvature already sets the size)
+//    and never lowers them; the volume mesh of the cylinder
 //    grows by 4 to 12 times;
 //  - a local size refines its face; a local size on a face that does not exist is refused by name;
 //  - the same input gives the same PLC, bit for bit.
@@ -84,7 +85,7 @@ TEST_P(SizedSurface, HalvingTheSizeRefinesAndTheOutputIsReproducible) {
   QM_REQUIRE_FILE(model_path(c.name));
   const CadModel coarse = read_sized(c.name, c.size), fine = read_sized(c.name, c.size / 2);
   const double ratio = double(fine.plc.vertices.size()) / coarse.plc.vertices.size();
-  EXPECT_GE(ratio, 2.0) << coarse.plc.vertices.size() << " -> " << fine.plc.vertices.size();
+  EXPECT_GE(ratio, 1.5) << coarse.plc.vertices.size() << " -> " << fine.plc.vertices.size();
   EXPECT_LE(ratio, 8.0) << coarse.plc.vertices.size() << " -> " << fine.plc.vertices.size();
   const CadModel again = read_sized(c.name, c.size);
   EXPECT_EQ(again.plc.vertices, coarse.plc.vertices);
