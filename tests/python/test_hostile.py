@@ -159,14 +159,18 @@ def test_hostile(case, qualmesh_exe, input_dir, limit_memory, tmp_path):
     before = sorted(p.name for p in outdir.iterdir())
     argv = [qualmesh_exe] + [_expand(a, input_dir, outdir) for a in case.argv]
 
+    signalled = [t for t in case.tags if t.startswith(("signal:", "scad-signal:"))]
+
     def preexec():
+        if signalled:  # a background job or nohup may hand qualmesh these ignored; it keeps what it is given
+            for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+                signal.signal(sig, signal.SIG_DFL)
         if limit_memory:
             limit_memory()
         if file_size_limit is not None:
             import resource
             resource.setrlimit(resource.RLIMIT_FSIZE, (file_size_limit, file_size_limit))
     env = dict(os.environ, TMPDIR=str(scratch))
-    signalled = [t for t in case.tags if t.startswith(("signal:", "scad-signal:"))]
     note = {}
     if signalled:
         proc, stdout, stderr, note = _run_signalled(argv, case, signalled[0], outdir, env, preexec, tmp_path)
