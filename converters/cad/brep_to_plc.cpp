@@ -190,6 +190,11 @@ class PlcBuilder {
       tolerances[f] = 2 * stats[f].max_chord_error + base_tolerance;
       max_chord_error = std::max(max_chord_error, stats[f].max_chord_error);
     }
+    // A plane face's nodes are its polygon's, exact; but a node of a neighbouring curved face's chord, which the
+    // CAD fit may move only part of the way, can sit by its corner: the plane claims the model's chordal bound too
+    // (as every face did with the tessellation's deflection).
+    for (int f = 1; f <= num_faces; ++f)
+      if (planar[f] && tolerances[f] > 0 && triangles[f].empty()) tolerances[f] += 2 * max_chord_error;
     model_.summary.face_tolerances.assign(tolerances.begin() + 1, tolerances.end());
     model_.summary.deflection_used = max_chord_error;
     region_margin_ = 2 * std::max(max_chord_error, seed_deflection_);
