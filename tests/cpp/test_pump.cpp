@@ -157,6 +157,7 @@ void expect_conforming(const Plc& plc, const qualmesh::TetMesh& mesh, const std:
 // `plain_out`, `pumped_out`: where to leave the two results for further checks (optional).
 void expect_pumping_properties(const Plc& plc, const std::string& name, qualmesh::MeshOptions options = {},
                                qualmesh::MeshResult* plain_out = nullptr, qualmesh::MeshResult* pumped_out = nullptr) {
+  options.improve = false;  // the engine's pumped mesh, before the improvement pass (test_improve)
   options.pump = false;
   qualmesh::MeshResult plain_result = qualmesh::mesh_plc(plc, options);
   options.pump = true;
@@ -245,6 +246,7 @@ TEST(Pump, SizeFieldBoxPumpsSlivers) {
   PlcBuilder b;
   b.box({0, 0, 0}, {1, 1, 1});
   qualmesh::MeshOptions options;
+  options.improve = false;  // the engine's pumped mesh, before the improvement pass (test_improve)
   options.max_edge_length = 0.15;
   expect_pumping_properties(b.plc, "box", options);
   // A size field fills the box with thousands of tetrahedra; plain refinement leaves slivers that pumping removes.
@@ -302,6 +304,7 @@ TEST(Pump, Deterministic) {
   PlcBuilder b;
   b.box({0, 0, 0}, {1, 1, 1});
   qualmesh::MeshOptions options;
+  options.improve = false;  // the engine's pumped mesh, before the improvement pass (test_improve)
   options.max_edge_length = 0.2;
   options.pump = false;
   const auto p1 = qualmesh::mesh_plc(b.plc, options);
@@ -330,6 +333,7 @@ TEST(Pump, SameMeshAfterMeshingAnotherPlc) {
   for (const bool pump : {false, true}) {
     const std::string name = pump ? "pumped" : "no-pump";
     qualmesh::MeshOptions options;
+    options.improve = false;  // the engine's pumped mesh, before the improvement pass (test_improve)
     options.max_edge_length = 0.2;
     options.pump = pump;
     std::vector<qualmesh::TetMesh> runs;
@@ -356,6 +360,7 @@ TEST(Pump, SameMeshAfterMeshingAnotherPlc) {
 
 TEST(Pump, NoPumpLeavesAllWeightsZero) {
   qualmesh::MeshOptions options;
+  options.improve = false;  // the engine's pumped mesh, before the improvement pass (test_improve)
   options.pump = false;
   const auto r = qualmesh::mesh_plc(l_shape(), options);
   EXPECT_TRUE(r.mesh.weights.empty());
@@ -389,6 +394,7 @@ std::size_t num_slivers_away_from_acute(const qualmesh::MeshResult& r, double sl
 // smaller, and the vertex count within 1.05x of plain refinement; the properties of expect_pumping_properties
 // (weighted Delaunay, conforming, weights within caps) hold with it.
 void expect_insertion_helps(const Plc& plc, const std::string& name, qualmesh::MeshOptions options) {
+  options.improve = false;
   qualmesh::MeshResult plain, with;
   expect_pumping_properties(plc, name, options, &plain, &with);
   options.pump = true;
@@ -409,6 +415,7 @@ TEST(SliverInsertion, SizeFieldBox) {
   PlcBuilder b;
   b.box({0, 0, 0}, {1, 1, 1});
   qualmesh::MeshOptions options;
+  options.improve = false;  // the engine's pumped mesh, before the improvement pass (test_improve)
   options.max_edge_length = 0.15;
   expect_insertion_helps(b.plc, "box", options);
 }
