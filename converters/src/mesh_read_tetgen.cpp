@@ -76,6 +76,11 @@ TetMesh read_tetgen(const std::string& base) {
       }
       for (std::size_t a = 0; a < num_attributes; ++a) {
         const double attribute = tokens.next_double("a tetrahedron attribute");
+        // The region is an int; a larger value would be undefined behaviour to convert (found by fuzzing).
+        if (a == 0 && !(attribute >= -2e9 && attribute <= 2e9)) {
+          tokens.fail(ErrorCode::Parse, "the region attribute of tetrahedron " + std::to_string(t + first_index) +
+                                            " (" + std::to_string(attribute) + ") is outside -2e9..2e9");
+        }
         if (a == 0) mesh.tet_region[t] = static_cast<int>(attribute);
       }
     }

@@ -400,3 +400,7 @@ for value, kind in [("0", OUT_OF_RANGE), ("-1", OUT_OF_RANGE), ("nan", NAN), ("i
          (r" > 0 \(model units; leave the option out for the automatic tolerance\)" if kind == OUT_OF_RANGE else ""))
 case("ok-sewing-tolerance-cad", ["info", "{shared}/data/cad/part.step", "--sewing-tolerance", "1e-3"], 0, r"^$",
      tags=["needs:shared"], timeout=60)
+# Fuzzing findings (tests/fuzz/regressions), each by its exact input: a region attribute beyond int (UB before).
+case("fuzz-tetgen-region-attribute-beyond-int", ["check", "{in}/fuzz_region_attribute.node"], 2,
+     r"fuzz_region_attribute\.ele:\d+: error\[parse\]: the region attribute of tetrahedron \d+ \([0-9.e+]+\) is "
+     r"outside -2e9\.\.2e9")

@@ -239,6 +239,14 @@ INPUTS["grid.node"], INPUTS["grid.ele"] = _grid_mesh(30)
 INPUTS["small_mesh.node"], INPUTS["small_mesh.ele"] = tetgen_mesh(CUBE, _kuhn_tets())
 
 
+# Fuzzing findings (tests/fuzz/regressions/READER/), split as fuzz_reader.cpp splits them ("\n@@\n"), by their
+# exact bytes: a TetGen .ele region attribute of 3.3e16 was converted to int (undefined behaviour).
+_FUZZ = Path(__file__).resolve().parents[1] / "fuzz" / "regressions"
+_parts = (_FUZZ / "mesh_tetgen" / "region-attribute-beyond-int").read_bytes().split(b"\n@@\n", 2)
+for _ext, _part in zip([".node", ".ele", ".face"], _parts):
+    INPUTS["fuzz_region_attribute" + _ext] = _part + (b"\n" if _ext != [".node", ".ele", ".face"][len(_parts) - 1] else b"")
+
+
 def write_inputs(folder):
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
