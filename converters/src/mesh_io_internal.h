@@ -91,6 +91,13 @@ class Tokenizer {
   std::size_t next_count(const char* what) {
     const long long value = next_integer(what);
     if (value < 0 || value > 2000000000LL) fail(ErrorCode::Parse, std::string("absurd ") + what + ": " + std::to_string(value));
+    // Whatever is counted takes at least a token and a blank each: a count beyond that is absurd, and allocating
+    // for it would blow up (a Medit "Vertices 999999999" asked for 24 GB; found by fuzzing).
+    const std::size_t left = text_.size() - pos_;
+    if (static_cast<std::size_t>(value) > left / 2 + 1) {
+      fail(ErrorCode::Parse, std::string("absurd ") + what + ": " + std::to_string(value) + ", but only " +
+                                 std::to_string(left) + " bytes of the file are left");
+    }
     return static_cast<std::size_t>(value);
   }
 

@@ -246,6 +246,9 @@ _parts = (_FUZZ / "mesh_tetgen" / "region-attribute-beyond-int").read_bytes().sp
 for _ext, _part in zip([".node", ".ele", ".face"], _parts):
     INPUTS["fuzz_region_attribute" + _ext] = _part + (b"\n" if _ext != [".node", ".ele", ".face"][len(_parts) - 1] else b"")
 
+# a Medit mesh announcing 999999999 vertices in a few bytes: 24 GB were allocated for them
+INPUTS["fuzz_vertex_count.mesh"] = (_FUZZ / "mesh_medit" / "vertex-count-beyond-file").read_bytes()
+
 
 def write_inputs(folder):
     folder = Path(folder)
