@@ -88,6 +88,7 @@ CadOptions cad_options_of(const InputOptions& options) {
   cad_options.curvature_elements = options.curvature;
   cad_options.gradation = options.gradation;
   for (const std::string& text : options.local_sizes) cad_options.local_sizes.push_back(parse_local_size(text));
+  cad_options.sewing_tolerance = options.sewing_tolerance;
   return cad_options;
 }
 
@@ -106,6 +107,10 @@ void add_input_options(CLI::App& command, InputOptions& options) {
                      "CAD inputs with --cad-surface tessellation: chordal deflection relative to the bounding-box "
                      "diagonal (default 0.001)");
   add_size_options(command, options);
+  command.add_option("--sewing-tolerance", options.sewing_tolerance,
+                     "CAD inputs: sewing tolerance in model units, for a model whose faces do not quite meet "
+                     "(default: automatic, 1e-6 of the bounding-box diagonal or the model's own vertex tolerance, "
+                     "at most 1e-4 of the diagonal)");
 }
 
 void add_size_options(CLI::App& command, InputOptions& options) {
@@ -153,6 +158,7 @@ Plc load_input(const std::string& path, const InputOptions& options, std::vector
     return read_plc(path, read_options);
   }
   if (is_cad_input(path)) {
+    require_regular_input_file(path);  // a directory or FIFO named .step is refused as the PLC readers refuse it
 #if QUALMESH_WITH_CAD
     return read_cad_through_plugin(path, cad_options_of(options), notes, cad_size_used);
 #else
@@ -184,6 +190,7 @@ CadFitReport fit_to_cad_input(const std::string& path, const InputOptions& optio
 }
 
 CadConformity measure_cad_input(const std::string& path, const InputOptions& options, const TetMesh& mesh) {
+  require_regular_input_file(path);
 #if QUALMESH_WITH_CAD
   return measure_through_plugin(path, cad_options_of(options), mesh);
 #else

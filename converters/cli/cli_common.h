@@ -41,6 +41,7 @@ struct InputOptions {
   double gradation = 0;              // 0 = none
   std::vector<std::string> local_sizes;  // "Face3=0.5", "Edge5=0.2", "Solid2=1" (checked at parse time)
   CadSurfaceMesh cad_surface = CadSurfaceMesh::Sized;
+  double sewing_tolerance = 0;       // CAD: sewing tolerance in model units (0 = automatic; CadOptions)
 };
 void add_input_options(CLI::App& command, InputOptions& options);
 

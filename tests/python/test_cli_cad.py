@@ -93,7 +93,8 @@ def test_unloadable_cad_plugin_is_refused_with_exit_code_2_naming_its_path(qualm
     if plugin_kind == "not-a-library":
         plugin.parent.mkdir()
         plugin.write_text("not an ELF shared object\n")
-    model = tmp_path / "model.step"  # the plugin fails before the model is opened
+    model = tmp_path / "model.step"  # a regular file (a missing one is refused first); the plugin fails before
+    model.write_text("ISO-10303-21;\n")  # the model is read
     env = dict(os.environ, QUALMESH_CAD_PLUGIN=str(plugin))
     proc = subprocess.run([qualmesh_exe, "info", str(model)], capture_output=True, text=True, env=env, timeout=120)
     assert proc.returncode == 2, proc.stderr
