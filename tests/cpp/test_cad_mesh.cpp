@@ -101,12 +101,17 @@ void expect_mesh_matches_cad(const std::string& file, const MeshOptions& options
   const std::vector<double> distances = distances_to_cad_faces(path, points, faces);
   std::size_t num_off = 0;
   double worst = 0;
+  std::string offenders;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double allowed = summary.face_tolerances[faces[i] - 1] * (1 + 1e-9);
-    if (distances[i] > allowed) ++num_off;
+    if (distances[i] > allowed && ++num_off <= 5)
+      offenders += " Face" + std::to_string(faces[i]) + " at (" + std::to_string(points[i][0]) + ", " +
+                   std::to_string(points[i][1]) + ", " + std::to_string(points[i][2]) + "): " +
+                   std::to_string(distances[i]) + " > " + std::to_string(allowed) + ";";
     worst = std::max(worst, distances[i] / summary.face_tolerances[faces[i] - 1]);
   }
-  EXPECT_EQ(num_off, 0u) << "boundary nodes off their CAD face; worst distance / tolerance = " << worst;
+  EXPECT_EQ(num_off, 0u) << "boundary nodes off their CAD face; worst distance / tolerance = " << worst
+                         << offenders;
 }
 
 // A test name from a file name: every character that is not a letter or a digit becomes '_'.
@@ -140,10 +145,11 @@ INSTANTIATE_TEST_SUITE_P(SharedData, CadMeshesNoPump,
                                            "918_pump_carter_sup_21_03_2006.stp", "U_Joint_2.stp", "model1.igs"),
                          file_test_name);
 
-// Steiner mode's safety net (mesher.cpp): on bottle.brep it leaves subfacets missing after the boundary stage, and
-// on part.step a region floods through a subfacet missing at that moment, so both are meshed again with the paper's
-// rule, which conforms; t20_data.step keeps Steiner mode (measured 4624 vertices against 10859 with the paper's
-// rule, no pumping).
+// Steiner mode's safety net (mesher.cpp): on bottle.brep (whose sized surface falls back to the tessellation) it
+// leaves subfacets missing after the boundary stage, so it is meshed again with the paper's rule, which conforms.
+// part.step fell back too while CAD faces reached the engine as BRepMesh's tessellation (a region flooded through
+// a subfacet missing at that moment); on the sized CAD surface it keeps Steiner mode, as t20_data.step does
+// (measured 4624 vertices against 10859 with the paper's rule, no pumping, on the tessellation).
 TEST(CadMeshesSteiner, FallsBackToThePaperRuleWhenItMustAndOnlyThen) {
   MeshOptions options;
   options.pump = false;
@@ -153,7 +159,7 @@ TEST(CadMeshesSteiner, FallsBackToThePaperRuleWhenItMustAndOnlyThen) {
   expect_mesh_matches_cad("part.step", options, &part);
   expect_mesh_matches_cad("t20_data.step", options, &t20);
   EXPECT_TRUE(bottle.encroaching_fell_back);
-  EXPECT_TRUE(part.encroaching_fell_back);
+  EXPECT_FALSE(part.encroaching_fell_back);
   EXPECT_FALSE(t20.encroaching_fell_back);
   options.encroaching = MeshOptions::Encroaching::All;
   expect_mesh_matches_cad("t20_data.step", options, &t20_paper);

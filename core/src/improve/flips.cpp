@@ -27,22 +27,17 @@ struct FlipPlan {
   int kind = 0;  // 1: 2-3 flip, n: edge removal of a ring of n
 };
 
-double radius_edge_of(const WorkMesh& w, const Tet4& t) {
-  return tet_radius_edge(w.point(t[0]), w.point(t[1]), w.point(t[2]), w.point(t[3]));
-}
-
 double quality_of(const WorkMesh& w, const Tet4& t) {
   return oriented_min_dihedral_deg(w.point(t[0]), w.point(t[1]), w.point(t[2]), w.point(t[3]));
 }
 
-// The old tetrahedra's smallest dihedral angle and, with rho_bound > 0, whether the new ones keep the radius-edge
-// bound (see flip_to_remove).
-bool keeps_radius_edge(const WorkMesh& w, const FlipPlan& plan, double rho_bound) {
-  if (rho_bound <= 0) return true;
-  double old_max = rho_bound;
-  for (Index t : plan.old_tets) old_max = std::max(old_max, radius_edge_of(w, w.tets[t]));
+// Whether every new tetrahedron of the plan passes the radius-edge guard (WorkMesh::rho_allowed).
+bool keeps_radius_edge(const WorkMesh& w, const FlipPlan& plan) {
+  if (w.rho_bound <= 0) return true;
+  double old_max = 0;
+  for (Index t : plan.old_tets) old_max = std::max(old_max, w.radius_edge(t));
   for (const Tet4& t : plan.new_tets)
-    if (radius_edge_of(w, t) > old_max) return false;
+    if (!w.rho_allowed(t, old_max)) return false;
   return true;
 }
 
@@ -195,16 +190,16 @@ bool plan_flip23(const WorkMesh& w, Index t, int face, FlipPlan& plan) {
 
 }  // namespace
 
-int flip_to_remove(WorkMesh& w, Index t, int max_ring, double rho_bound) {
+int flip_to_remove(WorkMesh& w, Index t, int max_ring) {
   const Tet4 tv = w.tets[t];
   FlipPlan best, plan;
   for (int a = 0; a < 4; ++a)
     for (int b = a + 1; b < 4; ++b)
       if (plan_edge_removal(w, tv[a], tv[b], max_ring, plan) && plan.new_min > best.new_min &&
-          keeps_radius_edge(w, plan, rho_bound))
+          keeps_radius_edge(w, plan))
         best = plan;
   for (int f = 0; f < 4; ++f)
-    if (plan_flip23(w, t, f, plan) && plan.new_min > best.new_min && keeps_radius_edge(w, plan, rho_bound))
+    if (plan_flip23(w, t, f, plan) && plan.new_min > best.new_min && keeps_radius_edge(w, plan))
       best = plan;
   if (best.kind == 0) return 0;
   double old_min = std::numeric_limits<double>::infinity();

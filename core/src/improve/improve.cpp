@@ -229,6 +229,9 @@ class Smoother {
       const auto& t = mesh_.faces[f];
       old_normals_.push_back(face_normal(w_.point(t[0]), w_.point(t[1]), w_.point(t[2])));
     }
+    old_max_rho_ = 0;
+    if (w_.rho_bound > 0)
+      for (Index t : star_) old_max_rho_ = std::max(old_max_rho_, w_.radius_edge(t));
     Point3 p = start;
     max_below_ = star_.size();
     double q = star_min(p);
@@ -284,6 +287,12 @@ class Smoother {
     return oriented_min_dihedral_deg(q[0], q[1], q[2], q[3]);
   }
 
+  bool rho_allowed_at(Index t, const Point3& p) const {
+    Point3 q[4];
+    for (int k = 0; k < 4; ++k) q[k] = w_.tets[t][k] == v_ ? p : w_.point(w_.tets[t][k]);
+    return w_.rho_allowed(w_.tets[t], q, old_max_rho_);
+  }
+
   // The star's smallest angle with v at p; -1 when a tetrahedron or a boundary triangle would fold.
   double star_min(const Point3& p) const {
     for (std::size_t k = 0; k < old_normals_.size(); ++k) {
@@ -299,7 +308,7 @@ class Smoother {
     std::size_t below = 0;
     for (Index t : star_) {
       const double qt = tet_quality_at(t, p);
-      if (qt < 0) return -1;
+      if (qt < 0 || !rho_allowed_at(t, p)) return -1;
       q = std::min(q, qt);
       below += qt < threshold_;
     }
@@ -358,6 +367,7 @@ class Smoother {
   std::vector<Vec> old_normals_;
   double sq_len_ = 0, len_ = 0;
   double threshold_;
+  double old_max_rho_ = 0;  // the star's largest radius-edge ratio before the move (the guard's cap)
   std::size_t max_below_ = 0;
 };
 
@@ -373,10 +383,11 @@ bool split_edge(WorkMesh& w, Smoother& smoother, std::vector<VertexConstraint>& 
       if (x == v) around.push_back(t);
   if (around.size() < 3) return false;
   std::vector<Index> ring;
-  double old_min = std::numeric_limits<double>::infinity();
+  double old_min = std::numeric_limits<double>::infinity(), old_max_rho = 0;
   for (Index t : around) {
     if (w.region[t] != w.region[around[0]]) return false;
     old_min = std::min(old_min, w.quality(t));
+    if (w.rho_bound > 0) old_max_rho = std::max(old_max_rho, w.radius_edge(t));
     for (Index x : w.tets[t])
       if (x != u && x != v) {
         if (w.is_constraint_face(u, v, x)) return false;
@@ -408,7 +419,10 @@ bool split_edge(WorkMesh& w, Smoother& smoother, std::vector<VertexConstraint>& 
   for (std::size_t t = first_new; t < w.tets.size(); ++t) valid = valid && w.quality(Index(t)) >= 0;
   if (valid) smoother.smooth(m, constraints[m], round);
   double new_min = std::numeric_limits<double>::infinity();
-  for (std::size_t t = first_new; t < w.tets.size(); ++t) new_min = std::min(new_min, w.quality(Index(t)));
+  for (std::size_t t = first_new; t < w.tets.size(); ++t) {
+    new_min = std::min(new_min, w.quality(Index(t)));
+    valid = valid && w.rho_allowed(w.tets[t], old_max_rho);
+  }
   if (valid && new_min > old_min + 1e-9) return true;
   // Undo: the new tets go (their ids stay dead), the old ones come back, the point is removed.
   for (std::size_t t = first_new; t < w.tets.size(); ++t) w.kill_tet(Index(t));
@@ -465,6 +479,8 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
   }
   WorkMesh w;
   w.points = &mesh.points;
+  w.rho_bound = options.radius_edge_bound;
+  w.edge_forced = shortest_edge_forced;
   w.tets = mesh.tets;
   w.region = mesh.tet_region.empty() ? std::vector<int>(mesh.tets.size(), 0) : mesh.tet_region;
   w.alive.assign(mesh.tets.size(), 1);
@@ -512,7 +528,7 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
         break;
       }
       if (!w.alive[t] || w.quality(t) >= threshold) continue;
-      const int kind = options.flips ? flip_to_remove(w, t, options.max_edge_ring, options.radius_edge_bound) : 0;
+      const int kind = options.flips ? flip_to_remove(w, t, options.max_edge_ring) : 0;
       if (kind != 0) {
         ++changes;
         ++res.num_flips;

@@ -61,7 +61,11 @@ struct ImproveOptions {
   // Which operations run (both by default; tests switch one off to show the other works alone).
   bool smoothing = true;
   bool flips = true;
-  // > 0: no flip makes a tetrahedron whose radius-edge ratio exceeds both this and the largest it replaces.
+  // > 0 (the mesher passes kImproveRadiusEdgeFactor * rho0): no flip, move or split leaves a new or changed
+  // tetrahedron above this radius-edge ratio, unless its shortest edge is forced by an acute input angle
+  // (shortest_edge_forced, so the output flags it as touching one) and it is no worse than the worst it replaces.
+  // So away from acute input angles the output's radius-edge ratio stays bounded (rho0 for the engine's tets,
+  // this bound for changed ones).
   double radius_edge_bound = 0;
   // Where flips and moves leave a tet below the threshold: split one of its interior edges at its midpoint and move
   // the new (free) vertex to the best place in its star; kept only when the smallest angle around the edge grows.

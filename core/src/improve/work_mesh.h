@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <vector>
 
 #include "qualmesh/quality.h"
@@ -39,6 +41,10 @@ struct WorkMesh {
   std::vector<Face3> constraint_faces;         // sorted vertex triples, sorted
   std::vector<Edge2> protected_edges;          // sorted pairs, sorted
   std::vector<std::vector<Index>> vertex_faces;  // vertex -> indices into TetMesh::faces holding it
+  // The radius-edge guard (ImproveOptions::radius_edge_bound; 0: off) and the acute-angle criterion of the output
+  // (improve.h's shortest_edge_forced; may be empty).
+  double rho_bound = 0;
+  std::function<bool(Index, Index)> edge_forced;
 
   const Point3& point(Index v) const { return (*points)[v]; }
   double quality(Index t) const {
@@ -50,6 +56,35 @@ struct WorkMesh {
   }
   bool is_protected_edge(Index a, Index b) const {
     return std::binary_search(protected_edges.begin(), protected_edges.end(), sorted_edge(a, b));
+  }
+  // The radius-edge guard on one new or changed tetrahedron with corners p[0..3] (vertex ids v): it may exceed
+  // rho_bound only where the output will excuse it (its shortest edge is forced by an acute input angle, the
+  // criterion by which touches_acute is set for changed tets) and not beyond `old_max`, the largest ratio among the
+  // tetrahedra it replaces. So no operation of the pass leaves a tet above rho_bound away from acute input angles
+  // (Rule 3 of Section 3 leaves rho0 there, relaxed by kImproveRadiusEdgeFactor for changed tets) nor makes the
+  // worst one worse.
+  bool rho_allowed(const Tet4& v, const Point3* p, double old_max) const {
+    if (rho_bound <= 0) return true;
+    const double rho = tet_radius_edge(p[0], p[1], p[2], p[3]);
+    if (rho <= rho_bound) return true;
+    if (!(rho <= old_max) || !edge_forced) return false;
+    double sq_min = std::numeric_limits<double>::infinity();
+    int ea = 0, eb = 1;
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        const double dx = p[a][0] - p[b][0], dy = p[a][1] - p[b][1], dz = p[a][2] - p[b][2];
+        const double sq = dx * dx + dy * dy + dz * dz;
+        if (sq < sq_min) sq_min = sq, ea = a, eb = b;
+      }
+    return edge_forced(v[ea], v[eb]);
+  }
+  bool rho_allowed(const Tet4& v, double old_max) const {
+    const Point3 p[4] = {point(v[0]), point(v[1]), point(v[2]), point(v[3])};
+    return rho_allowed(v, p, old_max);
+  }
+  double radius_edge(Index t) const {
+    const Tet4& v = tets[t];
+    return tet_radius_edge(point(v[0]), point(v[1]), point(v[2]), point(v[3]));
   }
   // Whether some alive tet holds both u and w.
   bool has_edge(Index u, Index w) const {
@@ -84,9 +119,8 @@ struct WorkMesh {
 // Flips (flips.cpp). Each tries every flip that removes tet `t` (edge removal over its six edges, n from 3 to
 // max_ring, and 2-3 flips over its four faces), inside one region and away from constraint faces and protected
 // edges, and applies the one whose new tetrahedra have the largest smallest dihedral angle, when that is larger
-// than the smallest of the tetrahedra it replaces. `rho_bound` > 0: no new tetrahedron has a radius-edge ratio
-// above max(rho_bound, the largest among those replaced). Returns 0 (nothing done), 1 (2-3 flip) or n (edge
-// removal of a ring of n).
-int flip_to_remove(WorkMesh& w, Index t, int max_ring, double rho_bound);
+// than the smallest of the tetrahedra it replaces. Returns 0 (nothing done), 1 (2-3 flip) or n (edge
+// removal of a ring of n). The radius-edge guard (WorkMesh::rho_allowed) holds for every new tetrahedron.
+int flip_to_remove(WorkMesh& w, Index t, int max_ring);
 
 }  // namespace qualmesh::detail
