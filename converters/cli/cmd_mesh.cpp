@@ -14,6 +14,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli_common.h"
@@ -43,7 +44,9 @@ struct MeshArgs {
 
 // After meshing: CAD inputs get their boundary nodes (and mid nodes) onto the CAD faces and edges
 // (fit_mesh_to_cad); other inputs are made second order when asked. Returns the summary lines of the fit.
-std::string finish_mesh(const MeshArgs& args, TetMesh& mesh) {
+// `corner_fit`: the fit of the corner nodes, when mesh_plc already made it (MeshOptions::before_improve, so that
+// the improvement pass works on the fitted mesh); then only the mid nodes are fitted here.
+std::string finish_mesh(const MeshArgs& args, TetMesh& mesh, const std::optional<CadFitReport>& corner_fit) {
   const bool cad = has_cad_faces(args.input);
   if (!cad) {
     if (args.order == 2) make_second_order(mesh);
@@ -51,7 +54,15 @@ std::string finish_mesh(const MeshArgs& args, TetMesh& mesh) {
   }
   CadFitOptions fit;
   fit.second_order = args.order == 2;
-  const CadFitReport r = fit_to_cad_input(args.input, args.input_options, fit, mesh);
+  CadFitReport r;
+  if (!corner_fit || fit.second_order) r = fit_to_cad_input(args.input, args.input_options, fit, mesh);
+  if (corner_fit) {  // the corners were fitted before the improvement pass: that fit is the one to report
+    const CadFitReport mids = r;
+    r = *corner_fit;
+    r.num_mid_targets = mids.num_mid_targets;
+    r.mids = mids.mids;
+    r.num_flat_caps_removed += mids.num_flat_caps_removed;
+  }
   char line[600];
   std::snprintf(line, sizeof line, "cad fit:     %zu boundary nodes onto their CAD faces/edges (max offset %.3g): %zu in full (%zu moving "
               "interior nodes too), %zu part way, %zu not moved (an element would invert); %zu flat tetrahedra "
@@ -81,6 +92,11 @@ int run_mesh(MeshArgs& args) {
   if (!check_mesh_input(plc, args.input, args.options, args.verbose)) return kExitBadInput;  // as `info` validates
   if (!check_size_estimate(plc, args.input, args.options, args.limits)) return kExitResource;  // mesh_limits.h
   args.options.cancel = make_cancel(args.limits);
+  std::optional<CadFitReport> corner_fit;
+  if (has_cad_faces(args.input))
+    args.options.before_improve = [&](TetMesh& mesh) {
+      corner_fit = fit_to_cad_input(args.input, args.input_options, CadFitOptions{}, mesh);
+    };
   const bool tty = isatty(fileno(stderr)) != 0;
   ProgressCallback progress;
   if (tty) {
@@ -108,7 +124,7 @@ int run_mesh(MeshArgs& args) {
   if (stopped && !args.limits.allow_partial) return kExitResource;
   if (tty) std::fprintf(stderr, "\r%70s\r", "");
   if (!check_mesh_result(plc, args.input, args.options, result)) return kExitBadInput;  // no tetrahedron
-  const std::string fit_lines = finish_mesh(args, result.mesh);
+  const std::string fit_lines = finish_mesh(args, result.mesh, corner_fit);
   write_tet_mesh(result.mesh, args.output);
   const MeshStats& st = result.stats;
   std::printf("input:       %zu vertices, %zu facets\n", plc.vertices.size(), plc.facets.size());

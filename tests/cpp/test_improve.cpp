@@ -310,3 +310,45 @@ TEST(ImproveReal, Joint) { expect_improves("data/plc/joint.off"); }
 TEST(ImproveReal, Fandisk) { expect_improves("data/plc/fandisk.off"); }
 
 }  // namespace
+
+namespace {
+
+// MeshOptions::before_improve (the CLI's CAD fit goes there): called once, before the pass, on the extracted mesh;
+// a tetrahedron it removes stays removed, the acute-angle flags follow the tets that remain, and the pass then
+// starts from the hook's mesh (its "before" figure is that mesh's minimum).
+TEST(ImproveReal, BeforeImproveHookRunsOnceOnTheExtractedMesh) {
+  const std::string path = qualmesh::test::shared_path("data/plc/joint.off");
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "missing input " << path;
+  const Plc plc = qualmesh::read_plc(path);
+  qualmesh::MeshOptions options;
+  options.improve = false;
+  const qualmesh::MeshResult plain = qualmesh::mesh_plc(plc, options);
+  int calls = 0;
+  std::size_t tets_seen = 0;
+  std::array<Index, 4> removed{};
+  options.before_improve = [&](qualmesh::TetMesh& mesh) {
+    ++calls;
+    tets_seen = mesh.tets.size();
+    removed = mesh.tets.back();
+    mesh.tets.pop_back();
+    if (!mesh.tet_region.empty()) mesh.tet_region.pop_back();
+  };
+  const qualmesh::MeshResult hooked = qualmesh::mesh_plc(plc, options);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(tets_seen, plain.mesh.tets.size());
+  ASSERT_EQ(hooked.mesh.tets.size() + 1, plain.mesh.tets.size());
+  ASSERT_EQ(hooked.tet_touches_acute_angle.size(), hooked.mesh.tets.size());
+  for (std::size_t t = 0; t < hooked.mesh.tets.size(); ++t) {
+    EXPECT_EQ(hooked.mesh.tets[t], plain.mesh.tets[t]);
+    EXPECT_EQ(hooked.tet_touches_acute_angle[t], plain.tet_touches_acute_angle[t]);
+  }
+  EXPECT_EQ(plain.mesh.tets.back(), removed);
+  options.improve = true;
+  calls = 0;
+  const qualmesh::MeshResult improved = qualmesh::mesh_plc(plc, options);
+  EXPECT_EQ(calls, 1);
+  EXPECT_GT(improved.stats.num_tets_improved, 0u);
+  EXPECT_EQ(improved.tet_touches_acute_angle.size(), improved.mesh.tets.size());
+}
+
+}  // namespace

@@ -87,6 +87,12 @@ struct MeshOptions {
   // 64 vertex insertions and in the pumping passes; once it returns true, meshing stops as at the vertex limit
   // (MeshStatus::Cancelled) and mesh_plc() returns the mesh as it stands. Empty: never polled, no cost.
   std::function<bool()> cancel;
+
+  // Called once on the extracted mesh, before the improvement pass (when meshing ended Ok): the CLI fits a CAD
+  // input's boundary nodes onto the CAD surface here (fit_mesh_to_cad), so that the pass works on the mesh that is
+  // written, and never moves a fitted node off its face (a boundary node off its facet's plane is Fixed there).
+  // It may move points and remove tetrahedra (with their boundary faces); it must not add or renumber points.
+  std::function<void(TetMesh&)> before_improve;
 };
 
 enum class MeshStage { Initial, Boundary, Refinement, Regions, Pumping, Extraction };

@@ -11,9 +11,13 @@
 //   Extraction  the TetMesh and its quality figures (extract.cpp).
 #include "qualmesh/mesher.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "qualmesh/quality.h"
@@ -61,11 +65,9 @@ bool steiner_holds(detail::MeshState& s, const char* when) {
 
 // The improvement pass (improve.h, beyond the paper) on the extracted mesh, with extract.cpp's acute-angle criterion
 // for the tets it changes: mesh vertex ids map back to the engine's in order (extraction keeps the engine's order).
-void improve_extracted(detail::MeshState& s, MeshResult& result) {
+// `engine_id`: the engine's vertex of each mesh point, found before MeshOptions::before_improve moved any.
+void improve_extracted(detail::MeshState& s, MeshResult& result, const std::vector<Index>& engine_id) {
   const auto t = Clock::now();
-  std::vector<Index> engine_id(result.mesh.points.size(), kNoIndex);
-  for (Index v = 0, e = 0; v < engine_id.size() && e < s.vertices.size(); ++e)
-    if (s.vertices[e].point == result.mesh.points[v]) engine_id[v++] = e;
   detail::ImproveOptions options;
   options.sliver_angle_deg = s.options.sliver_angle_deg;
   options.radius_edge_bound = kImproveRadiusEdgeFactor * s.params.radius_edge_bound;
@@ -88,6 +90,25 @@ void improve_extracted(detail::MeshState& s, MeshResult& result) {
              " edge removals), " + std::to_string(r.num_insertions) + " edge splits; below " +
              std::to_string(options.sliver_angle_deg) + " deg: " +
              std::to_string(r.num_below_before) + " -> " + std::to_string(r.num_below_after));
+}
+
+// MeshOptions::before_improve, with the acute-angle flags kept on the tets that remain (it may remove some).
+void run_before_improve(const std::function<void(TetMesh&)>& hook, MeshResult& result) {
+  std::map<std::array<Index, 4>, std::uint8_t> flag;
+  for (std::size_t i = 0; i < result.mesh.tets.size(); ++i) {
+    std::array<Index, 4> key = result.mesh.tets[i];
+    std::sort(key.begin(), key.end());
+    flag[key] = result.tet_touches_acute_angle[i];
+  }
+  hook(result.mesh);
+  result.tet_touches_acute_angle.clear();
+  for (const auto& tet : result.mesh.tets) {
+    std::array<Index, 4> key = tet;
+    std::sort(key.begin(), key.end());
+    const auto it = flag.find(key);
+    if (it == flag.end()) throw std::logic_error("before_improve added a tetrahedron");
+    result.tet_touches_acute_angle.push_back(it->second);
+  }
 }
 
 // One run of the stages. Encroaching::Steiner (experimental) guarantees neither that every subsegment and subfacet
@@ -164,7 +185,14 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
   t = Clock::now();
   begin_stage(s, MeshStage::Extraction);
   result.mesh = detail::extract_mesh(s, result.tet_touches_acute_angle);
-  if (options.improve && options.pump && result.status == MeshStatus::Ok) improve_extracted(s, result);
+  if (result.status == MeshStatus::Ok && (options.before_improve || (options.improve && options.pump))) {
+    std::vector<Index> engine_id(result.mesh.points.size(), kNoIndex);
+    for (Index v = 0, e = 0; v < engine_id.size() && e < s.vertices.size(); ++e)
+      if (s.vertices[e].point == result.mesh.points[v]) engine_id[v++] = e;
+    if (options.before_improve) run_before_improve(options.before_improve, result);
+    if (engine_id.size() != result.mesh.points.size()) throw std::logic_error("before_improve added points");
+    if (options.improve && options.pump) improve_extracted(s, result, engine_id);
+  }
   MeshStats& st = s.stats;
   st.num_tets = result.mesh.tets.size();
   st.num_boundary_faces = result.mesh.faces.size();
