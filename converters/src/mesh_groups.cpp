@@ -71,7 +71,8 @@ MidNodes mid_nodes(const TetMesh& mesh) {
 
 MeshGroups mesh_groups(const TetMesh& mesh, const MidNodes& mids) {
   MeshGroups groups;
-  for (std::size_t t = 0; t < mesh.tets.size(); ++t) groups.solids[tet_region_label(mesh, t)].push_back(t);
+  const std::vector<int> regions = tet_region_labels(mesh);
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) groups.solids[regions[t]].push_back(t);
   const std::vector<int> labels = face_labels(mesh);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     groups.faces[labels[f]].push_back(f);

@@ -55,8 +55,7 @@ void write_elmer(const TetMesh& mesh, const std::string& path) {
   }
   const MidNodes mids = mid_nodes(mesh);
   const bool quadratic = mids.tet != nullptr;
-  std::vector<int> regions(mesh.tets.size());
-  for (std::size_t t = 0; t < mesh.tets.size(); ++t) regions[t] = tet_region_label(mesh, t);
+  const std::vector<int> regions = tet_region_labels(mesh);
   const std::vector<int> labels = face_labels(mesh);
   const std::map<int, int> bodies = elmer_numbers(regions), tags = elmer_numbers(labels);
 

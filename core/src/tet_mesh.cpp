@@ -18,6 +18,15 @@ int tet_region_label(const TetMesh& mesh, std::size_t t) {
   return mesh.tet_region[t];
 }
 
+std::vector<int> tet_region_labels(const TetMesh& mesh) {
+  bool any = false;
+  for (int r : mesh.tet_region) any = any || r != 0;
+  std::vector<int> labels(mesh.tets.size(), 1);
+  if (any)
+    for (std::size_t t = 0; t < labels.size(); ++t) labels[t] = mesh.tet_region[t];
+  return labels;
+}
+
 std::vector<int> face_labels(const TetMesh& mesh) {
   std::vector<int> labels(mesh.faces.size(), 0);
   bool any_marker = false;

@@ -59,6 +59,9 @@ inline constexpr int kTetEdges[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, 
 // Region label of tetrahedron t: its attribute, or 1 for a mesh whose attributes are all 0 (a single unlabelled
 // region is Solid1, as FreeCAD names the one solid of a part).
 int tet_region_label(const TetMesh& mesh, std::size_t t);
+// tet_region_label of every tetrahedron, in one pass (a loop over tet_region_label is quadratic on an unlabelled
+// mesh: 162k tets took 18 s to write as .inp, .msh, .unv or .elmer).
+std::vector<int> tet_region_labels(const TetMesh& mesh);
 
 // Group label of each face: its facet marker when the mesh carries markers and any is non-zero, else its input
 // facet index + 1 (so a marker-less input still gets one group per facet), else 0.
