@@ -199,7 +199,8 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
   st.max_radius_edge = 0;
   if (st.num_tets_improved > 0) {
     // The improvement pass changed tets: the radius-edge audit of extract.cpp is redone over the output (the
-    // reasons of MeshStats stay those of the tets the engine left; a changed tet above rho0 is an acute one).
+    // reasons of MeshStats stay those of the tets the engine left; a changed tet may be above rho0, within
+    // kImproveRadiusEdgeFactor * rho0 away from acute input angles).
     st.num_tets_above_bound = 0;
     st.max_radius_edge_away_from_acute = 0;
   }
