@@ -573,14 +573,9 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
     if (!o.touched && have_acute) {
       o.acute = (*touches_acute)[t];
     } else if (shortest_edge_forced) {
-      double sq_min = std::numeric_limits<double>::infinity();
-      int ea = 0, eb = 1;
-      for (int a = 0; a < 4; ++a)
-        for (int b = a + 1; b < 4; ++b) {
-          const Vec e = sub(mesh.points[o.v[a]], mesh.points[o.v[b]]);
-          if (dot(e, e) < sq_min) sq_min = dot(e, e), ea = a, eb = b;
-        }
-      o.acute = shortest_edge_forced(o.v[ea], o.v[eb]) ? 1 : 0;
+      const Point3 p[4] = {mesh.points[o.v[0]], mesh.points[o.v[1]], mesh.points[o.v[2]], mesh.points[o.v[3]]};
+      const Edge2 e = shortest_edge(p);
+      o.acute = shortest_edge_forced(o.v[e[0]], o.v[e[1]]) ? 1 : 0;
     }
     out.push_back(o);
   }

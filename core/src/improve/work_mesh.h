@@ -27,6 +27,20 @@ inline Face3 sorted_face(Index a, Index b, Index c) {
 }
 inline Edge2 sorted_edge(Index a, Index b) { return a < b ? Edge2{a, b} : Edge2{b, a}; }
 
+// The corners (local 0..3, the first pair found on ties) of the shortest edge of the tetrahedron p[0..3]: the edge
+// by which the output's acute-angle flag of a changed tet is judged (improve.h, shortest_edge_forced).
+inline Edge2 shortest_edge(const Point3* p) {
+  double sq_min = std::numeric_limits<double>::infinity();
+  Edge2 out{0, 1};
+  for (Index a = 0; a < 4; ++a)
+    for (Index b = a + 1; b < 4; ++b) {
+      const double dx = p[a][0] - p[b][0], dy = p[a][1] - p[b][1], dz = p[a][2] - p[b][2];
+      const double sq = dx * dx + dy * dy + dz * dz;
+      if (sq < sq_min) sq_min = sq, out = {a, b};
+    }
+  return out;
+}
+
 // Smallest dihedral angle in degrees of (p0, p1, p2, p3), or -1 when it is not positively oriented by a margin
 // (six times its volume at most 1e-13 of its longest edge cubed).
 double oriented_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3);
@@ -68,15 +82,8 @@ struct WorkMesh {
     const double rho = tet_radius_edge(p[0], p[1], p[2], p[3]);
     if (rho <= rho_bound) return true;
     if (!(rho <= old_max) || !edge_forced) return false;
-    double sq_min = std::numeric_limits<double>::infinity();
-    int ea = 0, eb = 1;
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) {
-        const double dx = p[a][0] - p[b][0], dy = p[a][1] - p[b][1], dz = p[a][2] - p[b][2];
-        const double sq = dx * dx + dy * dy + dz * dz;
-        if (sq < sq_min) sq_min = sq, ea = a, eb = b;
-      }
-    return edge_forced(v[ea], v[eb]);
+    const Edge2 e = shortest_edge(p);
+    return edge_forced(v[e[0]], v[e[1]]);
   }
   bool rho_allowed(const Tet4& v, double old_max) const {
     const Point3 p[4] = {point(v[0]), point(v[1]), point(v[2]), point(v[3])};
