@@ -41,6 +41,7 @@
 #include <array>
 #include <limits>
 #include <map>
+#include <set>
 
 #include "cad_private.h"
 #include "face_mesh.h"
@@ -142,8 +143,9 @@ class PlcBuilder {
     std::vector<std::vector<SurfaceTriangle>> triangles(num_faces + 1);
     std::vector<FaceMeshStats> stats(num_faces + 1);
     std::vector<Point3>& vertices = model_.plc.vertices;
+    std::size_t boundary_end = 0;
     for (int pass = 0;; ++pass) {
-      const std::size_t boundary_end = vertices.size();
+      boundary_end = vertices.size();
       std::vector<EdgeSplit> splits;
       for (int f = 1; f <= num_faces; ++f) {
         if (planar[f]) continue;
@@ -164,6 +166,7 @@ class PlcBuilder {
         params.insert(params.begin() + it->index + 1, t);
       }
     }
+    remesh_curved_faces(field, planar, boundary_end, triangles, stats);
     std::vector<double> tolerances(num_faces + 1, 0);
     double max_chord_error = 0;
     for (int f = 1; f <= num_faces; ++f) {
@@ -204,6 +207,39 @@ class PlcBuilder {
     region_margin_ = 2 * std::max(max_chord_error, seed_deflection_);
   }
 
+  // The curved faces' triangles remeshed on their surfaces (face_remesh.cpp, isotropic remeshing towards the face's
+  // size; the edge chains stay): nodes [0, boundary_end) are CAD vertices and chain nodes, the rest the faces'
+  // interior nodes, made anew here face by face.
+  void remesh_curved_faces(const SizeField& field, const std::vector<char>& planar, std::size_t boundary_end,
+                           std::vector<std::vector<SurfaceTriangle>>& triangles, std::vector<FaceMeshStats>& stats) {
+    std::vector<Point3>& vertices = model_.plc.vertices;
+    const std::vector<Point3> source = vertices;
+    vertices.resize(boundary_end);
+    std::set<std::pair<Index, Index>> pieces;
+    for (const std::vector<Index>& chain : edge_chains_)
+      for (std::size_t i = 0; i + 1 < chain.size(); ++i)
+        pieces.emplace(std::min(chain[i], chain[i + 1]), std::max(chain[i], chain[i + 1]));
+    const auto fixed = [boundary_end](Index id) { return id < boundary_end; };
+    const auto is_piece = [&pieces](Index a, Index b) { return pieces.count({std::min(a, b), std::max(a, b)}) > 0; };
+    std::size_t num_remeshed = 0, num_partial = 0;
+    std::string refused;
+    for (int f = 1; f < static_cast<int>(triangles.size()); ++f) {
+      if (planar[f] || triangles[f].empty()) continue;
+      const TopoDS_Face face = TopoDS::Face(faces_(f).Oriented(TopAbs_FORWARD));
+      triangles[f] = remesh_face_on_surface(face, field.face_size(f), triangles[f], fixed, is_piece, source,
+                                            vertices, stats[f]);
+      num_remeshed += stats[f].remeshed;
+      num_partial += stats[f].remeshed && stats[f].num_remesh_rounds < kRemeshRounds;
+      if (!stats[f].remeshed)
+        refused += (refused.empty() ? "" : ", ") + ("Face" + std::to_string(f)) + " (" + stats[f].remesh_refused + ")";
+    }
+    if (num_remeshed || !refused.empty())
+      model_.summary.surface_log.push_back(
+          std::to_string(num_remeshed) + " curved faces remeshed on the CAD surface (" + std::to_string(num_partial) +
+          " of them stopped early: a round was undone)" +
+          (refused.empty() ? "" : "; kept the refinement's triangles: " + refused));
+  }
+
   // The largest distance between a chord of a face's edge chains (the sized discretisation) and its edge curve, at
   // the chords' midpoints.
   double face_edge_sagitta(const TopoDS_Face& face) const {
@@ -228,16 +264,20 @@ class PlcBuilder {
 
   std::vector<SurfaceTriangle> mesh_face_on_surface(int f, const SizeField& field, FaceMeshStats& stats) {
     const TopoDS_Face face = TopoDS::Face(faces_(f).Oriented(TopAbs_FORWARD));
-    return mesh_curved_face(
-        face, f, field.face_size(f), kMinSplitFactor * field.face_size(f),
-        [this](const TopoDS_Edge& edge) -> const EdgeChain& {
-          const int e = edges_.FindIndex(edge);
-          scratch_chain_.edge_number = e;
-          scratch_chain_.ids = edge_chains_[e];
-          scratch_chain_.params = edge_params_[e];
-          return scratch_chain_;
-        },
-        [this](const TopoDS_Vertex& v) { return vertex_id(v); }, model_.plc.vertices, file_, stats);
+    return mesh_curved_face(face, f, field.face_size(f), kMinSplitFactor * field.face_size(f), chain_for(),
+                            [this](const TopoDS_Vertex& v) { return vertex_id(v); }, model_.plc.vertices, file_,
+                            stats);
+  }
+
+  // An edge's chain, as the face mesher asks for it.
+  std::function<const EdgeChain&(const TopoDS_Edge&)> chain_for() {
+    return [this](const TopoDS_Edge& edge) -> const EdgeChain& {
+      const int e = edges_.FindIndex(edge);
+      scratch_chain_.edge_number = e;
+      scratch_chain_.ids = edge_chains_[e];
+      scratch_chain_.params = edge_params_[e];
+      return scratch_chain_;
+    };
   }
 
   void tessellate(double relative_deflection = -1) {

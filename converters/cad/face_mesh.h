@@ -49,6 +49,11 @@ struct FaceMeshStats {
   double max_chord_error = 0;         // largest distance from a triangle's centroid to the surface (sampled)
   double min_angle_deg = 180;         // smallest 3D corner angle of the face's triangles
   std::vector<EdgeSplit> splits;      // boundary pieces to split before meshing again (sorted, unique)
+  // remesh_face_on_surface: whether its triangles replaced the refinement's, after how many rounds, and why not (or
+  // why it stopped before kRemeshRounds).
+  bool remeshed = false;
+  int num_remesh_rounds = 0;
+  std::string remesh_refused;
 };
 
 using SurfaceTriangle = std::array<Index, 3>;
@@ -64,5 +69,22 @@ std::vector<SurfaceTriangle> mesh_curved_face(const TopoDS_Face& face, int face_
                                               const std::function<Index(const TopoDS_Vertex&)>& vertex_id,
                                               std::vector<Point3>& vertices, const std::string& file,
                                               FaceMeshStats& stats);
+
+// Rounds of isotropic remeshing a face gets (fewer when a round would stand a triangle across the surface).
+inline constexpr int kRemeshRounds = 6;
+
+// Isotropic remeshing of one face's triangles (face_remesh.cpp) on its CAD surface, towards edges of length `size`:
+// `triangles` (mesh_curved_face's, counter-clockwise about the normal of `face` taken FORWARD) use ids into
+// `source`; nodes with fixed(id) (CAD vertices and edge chain nodes, the same ids in `vertices`) stay, pieces of edge
+// chains (is_piece(a, b)) are neither split, collapsed nor flipped, every other node is moved or made on the
+// surface. Returns the new triangles, their interior nodes appended to `vertices`; or, with stats.remesh_refused
+// saying why (the first round failed, or left a triangle standing across the surface), `triangles` with their
+// interior nodes appended to `vertices` as they were. Deterministic.
+std::vector<SurfaceTriangle> remesh_face_on_surface(const TopoDS_Face& face, double size,
+                                                    const std::vector<SurfaceTriangle>& triangles,
+                                                    const std::function<bool(Index)>& fixed,
+                                                    const std::function<bool(Index, Index)>& is_piece,
+                                                    const std::vector<Point3>& source, std::vector<Point3>& vertices,
+                                                    FaceMeshStats& stats);
 
 }  // namespace qualmesh::cad

@@ -96,6 +96,9 @@ struct CadSummary {
   // Sized: non-empty when the sized surface mesh was refused by validate_plc and the model tessellated instead.
   std::string surface_fallback;
   std::vector<std::string> healing_log;  // what was healed, one line per action (empty: nothing needed)
+  // Sized: how the curved faces were meshed (isotropic remeshing on the surface, and the faces that kept their
+  // refinement triangles, with why), one line each.
+  std::vector<std::string> surface_log;
   std::string source_format;             // "STEP", "IGES", "BREP", "FCStd", "OpenSCAD"
 };
 
