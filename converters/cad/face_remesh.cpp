@@ -40,6 +40,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 namespace qualmesh::cad {
@@ -61,7 +62,7 @@ constexpr double kMinFacing = 0.17;
 // A round may not leave a corner below this (degrees), or below the refinement's smallest corner when that is
 // smaller (a corner the face's boundary makes): tiny corners are input angles the volume mesher must protect
 // (part.step at --size 10: a 1.7 deg corner next to a chain made Rule 1 cascade without end).
-constexpr double kSmallestCornerDeg = 10;
+constexpr double kSmallestCornerDeg = 5;
 
 gp_Pnt to_gp(const K::Point_3& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
 
@@ -199,12 +200,17 @@ class FaceRemesher {
                                    .vertex_is_constrained_map(vertex_fixed_)
                                    .projection_functor(project_node));
       if (CGAL::is_valid_polygon_mesh(mesh_) && all_triangles()) {
-        if (!mend())
+        if (!mend()) {
           why = "it left a triangle standing across the surface";
-        else if (min_angle_deg() < std::min(floor_angle_deg_, kSmallestCornerDeg))
-          why = "it made a corner below " + std::to_string(int(kSmallestCornerDeg)) + " deg (" + std::to_string(min_angle_deg()) + " against " + std::to_string(floor_angle_deg_) + ")";
-        else
-          return "";
+        } else {
+          flip_small_corners();
+          const double corner = min_angle_deg();
+          if (corner >= std::min(floor_angle_deg_, kSmallestCornerDeg)) return "";
+          char text[120];
+          std::snprintf(text, sizeof text, "it made a corner of %.3g deg (the refinement's smallest: %.3g)", corner,
+                        floor_angle_deg_);
+          why = text;
+        }
       }
     } catch (const Standard_Failure&) {
       why = "OpenCASCADE failed to project a node";
@@ -303,6 +309,42 @@ class FaceRemesher {
     if (!props.IsNormalDefined()) return 1.0;
     const gp_Dir n = props.Normal();
     return (normal.x() * n.X() + normal.y() * n.Y() + normal.z() * n.Z()) / length;
+  }
+
+  // Triangles with a corner below kSmallestCornerDeg (a collapse or a relaxation next to a held node makes a few):
+  // the free edge opposite their largest corner is flipped when that raises the smallest corner of the two
+  // triangles and both still face the surface.
+  void flip_small_corners() {
+    auto smallest = [&](FaceD f) {
+      const std::array<VertexD, 3> v = corners(f);
+      return min_corner_deg(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]));
+    };
+    for (int pass = 0; pass < 3; ++pass) {
+      std::size_t flips = 0;
+      for (FaceD f : mesh_.faces()) {
+        if (smallest(f) >= kSmallestCornerDeg) continue;
+        HalfedgeD longest = Mesh::null_halfedge();
+        double length = 0;
+        const HalfedgeD h0 = mesh_.halfedge(f);
+        for (HalfedgeD h : {h0, mesh_.next(h0), mesh_.prev(h0)}) {
+          const double l = CGAL::squared_distance(mesh_.point(mesh_.source(h)), mesh_.point(mesh_.target(h)));
+          if (l > length) length = l, longest = h;
+        }
+        const EdgeD e = mesh_.edge(longest);
+        if (edge_fixed_[e] || mesh_.is_border(e)) continue;
+        const VertexD c = mesh_.target(mesh_.next(longest)), d = mesh_.target(mesh_.next(mesh_.opposite(longest)));
+        if (mesh_.halfedge(c, d) != Mesh::null_halfedge()) continue;
+        const FaceD g = mesh_.face(mesh_.opposite(longest));
+        const double was = std::min(smallest(f), smallest(g));
+        CGAL::Euler::flip_edge(longest, mesh_);
+        const FaceD f2 = mesh_.face(longest), g2 = mesh_.face(mesh_.opposite(longest));
+        if (std::min(smallest(f2), smallest(g2)) > was && facing(f2) > kMinFacing && facing(g2) > kMinFacing)
+          ++flips;
+        else
+          CGAL::Euler::flip_edge(longest, mesh_);
+      }
+      if (flips == 0) break;
+    }
   }
 
   // Flips the free edges of triangles that stand across the surface while a flip turns both of its triangles

@@ -115,9 +115,10 @@ void add_input_options(CLI::App& command, InputOptions& options) {
 
 void add_size_options(CLI::App& command, InputOptions& options) {
   command.add_option("--size", options.size,
-                     "CAD inputs: target edge length in model units (Gmsh's CharacteristicLengthMax; also the "
-                     "longest edge the volume mesh may have unless --max-edge says otherwise; default: a tenth of "
-                     "the bounding-box diagonal, Gmsh's default at CAD vertices)")
+                     "Target edge length in model units (Gmsh's CharacteristicLengthMax): CAD inputs get their "
+                     "surface meshed at it, and the volume mesher splits tetrahedra with an edge above twice it "
+                     "(about Gmsh's node count at the same value); default for CAD inputs a tenth of the "
+                     "bounding-box diagonal (Gmsh's default at CAD vertices), none for surfaces")
       ->check(finite_above(1e-150, false, "> 0 (model units)"));
   command.add_option("--min-size", options.min_size,
                      "CAD inputs: smallest edge length the curvature refinement may ask for (Gmsh's "
@@ -153,6 +154,7 @@ Plc load_input(const std::string& path, const InputOptions& options, std::vector
                double* cad_size_used) {
   if (cad_size_used) *cad_size_used = 0;
   if (is_plc_path(path)) {
+    if (cad_size_used && options.size > 0) *cad_size_used = options.size;
     ReadOptions read_options;
     read_options.merge_coplanar = !options.keep_triangles;
     return read_plc(path, read_options);

@@ -47,7 +47,8 @@ void add_input_options(CLI::App& command, InputOptions& options);
 
 // Reads any input model the CLI accepts (PLC formats; CAD and OpenSCAD formats when built with the CAD front end)
 // into a Plc. When `notes` is given, lines describing the source (CAD solids, faces, edges, healing) are appended;
-// when `cad_size_used` is given, it receives a CAD input's target edge length (CadSummary::size_used; else 0).
+// when `cad_size_used` is given, it receives the target edge length: a CAD input's (CadSummary::size_used), or
+// --size for a surface or PLC (else 0).
 // Throws InputError.
 Plc load_input(const std::string& path, const InputOptions& options, std::vector<std::string>* notes = nullptr,
                double* cad_size_used = nullptr);

@@ -59,10 +59,12 @@ bool check_size_estimate(const Plc& plc, const std::string& file, const MeshOpti
   const double volume = (box.max[0] - box.min[0]) * (box.max[1] - box.min[1]) * (box.max[2] - box.min[2]);
   if (!(volume > 0)) return true;
   double tets = 0;
-  if (options.max_edge_length > 0) {
-    const double l = options.max_edge_length;
-    tets = std::max(tets, kTetsPerEdgeCube * (volume / l) / (l * l));
+  double l = options.max_edge_length > 0 ? options.max_edge_length : 0;
+  if (options.target_edge_length > 0) {  // Rule 3's longest edge under a target (mesher.h), for the estimate
+    const double from_target = kLongestEdgePerTarget * options.target_edge_length;
+    l = l > 0 ? std::min(l, from_target) : from_target;
   }
+  if (l > 0) tets = std::max(tets, kTetsPerEdgeCube * (volume / l) / (l * l));
   // (Regional volume limits apply to their region only: not counted, so that a small region does not refuse all.)
   if (options.max_volume > 0) tets = std::max(tets, kTetsPerMaxVolume * volume / options.max_volume);
   if (!(tets > 0)) return true;  // no size field: the local feature size decides (not estimated)

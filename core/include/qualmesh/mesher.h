@@ -27,6 +27,8 @@ namespace qualmesh {
 // Measured on fandisk.off: 1.0 leaves min dihedral 5.4 deg, 1.5 reaches 15.0 deg; unbounded, joint.off's changed
 // tets reached radius-edge 85 away from acute input angles.
 inline constexpr double kImproveRadiusEdgeFactor = 1.5;
+// The longest edge Rule 3 allows, relative to MeshOptions::target_edge_length.
+inline constexpr double kLongestEdgePerTarget = 2.0;
 
 struct MeshOptions {
   // rho0 of Rule 3: circumradius / shortest edge bound for tetrahedra inside the domain. Values below about 1.1
@@ -34,6 +36,12 @@ struct MeshOptions {
   double radius_edge_bound = 2.0;
   // Longest edge allowed in a tetrahedron inside the domain, in model units. 0 = no limit.
   double max_edge_length = 0;
+  // Target edge length h, in model units (Gmsh's CharacteristicLengthMax; the CLI's --size, whose default for CAD
+  // inputs is a tenth of the bounding-box diagonal). 0 = none. Rule 3 splits a tetrahedron inside the domain whose
+  // longest edge exceeds kLongestEdgePerTarget * h: Delaunay refinement under that bound gives about Gmsh's node
+  // count at CharacteristicLengthMax = h, whose tetrahedra have edges of 1.25 h on average and up to 2.1 h
+  // (measured on tests/data/cad/cylinder.brep at h = 2.06). max_edge_length, when set, is a hard bound besides.
+  double target_edge_length = 0;
   // Largest volume allowed for a tetrahedron inside the domain, in model units cubed. 0 = no limit. Region seeds
   // (RegionSeed::max_volume) may lower it per region.
   double max_volume = 0;

@@ -1,6 +1,7 @@
 // RefineParams::from and the encroachment policy (refine_params.h).
 #include "refine/refine_params.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "refine/refine_state.h"
@@ -10,7 +11,12 @@ namespace qualmesh::detail {
 RefineParams RefineParams::from(const MeshOptions& options) {
   RefineParams p;
   p.radius_edge_bound = options.radius_edge_bound;
-  p.sq_max_edge = options.max_edge_length > 0 ? options.max_edge_length * options.max_edge_length : 0;
+  double max_edge = options.max_edge_length > 0 ? options.max_edge_length : 0;
+  if (options.target_edge_length > 0) {
+    const double from_target = kLongestEdgePerTarget * options.target_edge_length;
+    max_edge = max_edge > 0 ? std::min(max_edge, from_target) : from_target;
+  }
+  p.sq_max_edge = max_edge * max_edge;
   p.max_volume = options.max_volume > 0 ? options.max_volume : 0;
   p.sliver_angle_deg = options.sliver_angle_deg;
   p.sq_omega = options.omega * options.omega;

@@ -49,8 +49,9 @@ class EncroachmentPolicy {
 struct RefineParams {
   // rho0 of Rule 3: circumradius / shortest edge bound of tetrahedra inside the domain (dimensionless).
   double radius_edge_bound = 2.0;
-  // Size field: squared longest edge allowed (model units squared; 0 = none) and largest volume (0 = none; a
-  // region seed may lower it, MeshState::regions).
+  // Size field: squared longest edge allowed (model units squared; 0 = none): the smaller of max_edge_length and
+  // kLongestEdgePerTarget * target_edge_length; and the largest volume (0 = none; a region seed may lower it,
+  // MeshState::regions).
   double sq_max_edge = 0;
   double max_volume = 0;
   // A tetrahedron below this smallest dihedral angle (degrees) is below the sliver angle.
