@@ -45,12 +45,22 @@ double polygon_area(const Plc& plc, const std::vector<Index>& loop) {
   return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
-// `stats` (may be null) gets the run's figures.
-void expect_mesh_matches_cad(const std::string& file, const MeshOptions& options, MeshStats* stats = nullptr) {
+// The engine options `qualmesh mesh` gives a CAD input unless told otherwise (cmd_mesh.cpp): the relaxed
+// encroachment rule and the sized surface's target edge length.
+MeshOptions cad_defaults() {
+  MeshOptions options;
+  options.encroaching = MeshOptions::Encroaching::Steiner;
+  return options;
+}
+
+// `stats` (may be null) gets the run's figures. The surface's target edge length is the engine's too, as
+// `qualmesh mesh` makes it, unless `options` has one.
+void expect_mesh_matches_cad(const std::string& file, MeshOptions options, MeshStats* stats = nullptr) {
   const std::string path = test::shared_path("data/cad/" + file);
   QM_REQUIRE_FILE(path);
   const CadModel model = read_cad(path);
   const CadSummary& summary = model.summary;
+  if (!(options.target_edge_length > 0)) options.target_edge_length = summary.size_used;
   const MeshResult result = mesh_plc(model.plc, options);
   if (stats) *stats = result.stats;
   ASSERT_EQ(result.status, MeshStatus::Ok);
@@ -123,14 +133,14 @@ std::string file_test_name(const ::testing::TestParamInfo<const char*>& info) {
 }
 
 class CadMeshes : public ::testing::TestWithParam<const char*> {};
-TEST_P(CadMeshes, MeshMatchesCadModel) { expect_mesh_matches_cad(GetParam(), MeshOptions{}); }
+TEST_P(CadMeshes, MeshMatchesCadModel) { expect_mesh_matches_cad(GetParam(), cad_defaults()); }
 
 // The models whose tessellations meet at tiny angles (needle triangles down to 0.005 deg: concentric shells,
 // subsegments.cpp) mesh in seconds without pumping, which changes neither the volume nor the boundary; pumping
 // them takes minutes (see the issue notes).
 class CadMeshesNoPump : public ::testing::TestWithParam<const char*> {};
 TEST_P(CadMeshesNoPump, MeshMatchesCadModel) {
-  MeshOptions options;
+  MeshOptions options = cad_defaults();
   options.pump = false;
   expect_mesh_matches_cad(GetParam(), options);
 }

@@ -29,9 +29,9 @@ def main():
               obj.MinDihedralAngle.Value, obj.CharacteristicLengthMax.Value)
     RESULT["first"] = {"status": first.status, "nodes": obj.FemMesh.NodeCount}
 
-    # a run of about 30 s (1M tetrahedra), cancelled after 1.5 s
-    obj.CharacteristicLengthMax = 0.7
-    expected = before[:5] + (0.7,)
+    # a run of about a minute (about 1.5M tetrahedra at --size 0.3), cancelled after 1.5 s
+    obj.CharacteristicLengthMax = 0.3
+    expected = before[:5] + (0.3,)
     tools = qualmesh_fem.QualMeshTools(obj)
     cancel = threading.Event()
     threading.Timer(1.5, cancel.set).start()
@@ -56,7 +56,7 @@ def main():
     cancel = threading.Event()
     threading.Timer(1.0, cancel.set).start()
     try:
-        qualmesh_fem.mesh_shape(Part.makeBox(100, 10, 10), max_size=0.7, cancel_event=cancel)
+        qualmesh_fem.mesh_shape(Part.makeBox(100, 10, 10), max_size=0.3, cancel_event=cancel)
         RESULT["api_cancel"] = "returned"
     except qualmesh_fem.QualMeshCancelled as e:
         RESULT["api_cancel"] = "cancelled: {}".format(e)

@@ -21,6 +21,6 @@ def test_cantilever_tip_deflection_through_freecad(tmp_path, qualmesh_exe):
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     figures = json.loads(result.read_text())
     assert "mean tip deflection" in proc.stdout
-    assert figures["tip_nodes"] > 20 and figures["nodes"] > 1000
+    assert figures["tip_nodes"] > 20, figures
     assert abs(figures["mean_tip_deflection_mm"] - CONVERGED_MM) <= 0.005 * CONVERGED_MM, figures
     assert (tmp_path / "work" / "cantilever.FCStd").exists()

@@ -62,7 +62,8 @@ def test_mesh_is_created_with_groups_and_statistics(facts):
     create, mesh, shape = facts["create"], facts["mesh"], facts["shape"]
     assert create["status"] == "succeeded", create["message"]
     assert mesh["proxy_type"] == "QualMesh::FemMeshQualMesh"
-    assert mesh["volumes"] == mesh["tetra"] == create["statistics"]["tetrahedra"] > 1000
+    # (box 100 x 10 x 10 at 5: 405 tets, 164 corner nodes; Gmsh -clmax 5: 190 nodes)
+    assert mesh["volumes"] == mesh["tetra"] == create["statistics"]["tetrahedra"] > 100
     assert mesh["nodes"] == create["statistics"]["nodes"]
     assert mesh["orientation"]["positive"] == 0, "SMESH's tetrahedra are negatively oriented"
     stats = mesh["object_stats"]
