@@ -9,6 +9,8 @@
 // its face moves at most about that far, but a move is always checked against the elements around the node
 // (move_nodes_checked, second_order.h): relaxed part of the way, or not made, rather than inverting an element.
 #include <BRep_Tool.hxx>
+#include <GeomAdaptor_Curve.hxx>
+#include <GeomAdaptor_Surface.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
 #include <ShapeAnalysis_Curve.hxx>
@@ -53,6 +55,16 @@ class Projector {
     TopExp::MapShapes(solids, TopAbs_EDGE, edges_);
   }
 
+  // Whether CAD face f / edge e is curved (a plane or a line needs no projection of points on its facets).
+  bool face_curved(int f) {
+    const FaceData* data = face(f);
+    return data && !data->planar;
+  }
+  bool edge_curved(int e) {
+    const EdgeData* data = edge(e);
+    return data && !data->straight;
+  }
+
   // Target of a point on CAD face f; false when there is none to go to.
   bool onto_face(int f, const Point3& p, Point3& target) {
     FaceData* data = face(f);
@@ -82,12 +94,14 @@ class Projector {
     std::unique_ptr<ShapeAnalysis_Surface> analysis;
     gp_Trsf to_local, to_global;
     double precision = 1e-9;
+    bool planar = false;
   };
   struct EdgeData {
     Handle(Geom_Curve) curve;
     double first = 0, last = 0;
     gp_Trsf to_local, to_global;
     double precision = 1e-9;
+    bool straight = false;
   };
 
   FaceData* face(int f) {
@@ -105,6 +119,7 @@ class Projector {
           data->to_global = location.Transformation();
           data->to_local = location.Transformation().Inverted();
           data->precision = std::max(1e-12, 1e-3 * BRep_Tool::Tolerance(face));
+          data->planar = GeomAdaptor_Surface(surface).GetType() == GeomAbs_Plane;
         }
       }
       it = face_data_.emplace(f, std::move(data)).first;
@@ -130,6 +145,7 @@ class Projector {
           data->to_global = location.Transformation();
           data->to_local = location.Transformation().Inverted();
           data->precision = std::max(1e-12, 1e-3 * BRep_Tool::Tolerance(edge));
+          data->straight = GeomAdaptor_Curve(curve).GetType() == GeomAbs_Line;
         }
       }
       it = edge_data_.emplace(e, std::move(data)).first;
@@ -173,6 +189,32 @@ std::vector<NodeMove> targets(Projector& projector, const TetMesh& mesh, const s
 }
 
 }  // namespace
+
+bool project_onto_cad(const std::string& path, const CadOptions& options, int edge, int face, Point3& p) {
+  // One projector, for the model last asked about (the mesher asks about one model, point after point).
+  static std::string cached_path;
+  static std::unique_ptr<Projector> cached;
+  if (!cached || cached_path != path) {
+    std::vector<std::string> log;
+    cached = std::make_unique<Projector>(cad::read_healed_solids(path, options, log, /*use_cache=*/true));
+    cached_path = path;
+  }
+  Point3 target{};
+  try {
+    if (edge > 0) {
+      if (!cached->edge_curved(edge) || !cached->onto_edge(edge, p, target)) return false;
+    } else if (face > 0) {
+      if (!cached->face_curved(face) || !cached->onto_face(face, p, target)) return false;
+    } else {
+      return false;
+    }
+  } catch (const Standard_Failure&) {
+    return false;
+  }
+  if (!std::isfinite(target[0]) || !std::isfinite(target[1]) || !std::isfinite(target[2])) return false;
+  p = target;
+  return true;
+}
 
 CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options, TetMesh& mesh,
                              const CadFitOptions& fit_options) {

@@ -25,6 +25,8 @@ inline constexpr const char* kLoadCadSymbol = "qualmesh_cad_plugin_load_cad_v2";
 // Names of the other entry points: fit_mesh_to_cad (FitMeshFn), measure_against_cad (MeasureFn).
 inline constexpr const char* kFitMeshSymbol = "qualmesh_cad_plugin_fit_mesh_v2";
 inline constexpr const char* kMeasureSymbol = "qualmesh_cad_plugin_measure_v2";
+// project_onto_cad (ProjectFn); optional: a plugin without it leaves the mesher's boundary points on the facets.
+inline constexpr const char* kProjectSymbol = "qualmesh_cad_plugin_project_v2";
 
 enum class LoadStatus : int {
   Ok = 0,             // plc and notes are filled
@@ -66,5 +68,9 @@ struct MeasureResult {
 };
 using MeasureFn = void (*)(const char* path, const CadOptions* options, const TetMesh* mesh,
                            MeasureResult* result) noexcept;
+
+// project_onto_cad(path, *options, edge, face, xyz as a Point3): 1 when xyz was moved onto the CAD edge or face, 0
+// when not (nothing to move, or any failure: the point stays where the mesher put it). Never throws.
+using ProjectFn = int (*)(const char* path, const CadOptions* options, int edge, int face, double* xyz) noexcept;
 
 }  // namespace qualmesh::cad_plugin

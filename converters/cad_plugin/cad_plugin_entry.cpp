@@ -104,3 +104,17 @@ extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_measu
   static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_measure_v2), cad_plugin::MeasureFn>);
   cad_plugin::guarded(&result->outcome, [&] { result->conformity = measure_against_cad(path, *options, *mesh); });
 }
+
+extern "C" __attribute__((visibility("default"))) int qualmesh_cad_plugin_project_v2(
+    const char* path, const qualmesh::CadOptions* options, int edge, int face, double* xyz) noexcept {
+  using namespace qualmesh;
+  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_project_v2), cad_plugin::ProjectFn>);
+  try {
+    Point3 p{xyz[0], xyz[1], xyz[2]};
+    if (!project_onto_cad(path, *options, edge, face, p)) return 0;
+    xyz[0] = p[0], xyz[1] = p[1], xyz[2] = p[2];
+    return 1;
+  } catch (...) {
+    return 0;
+  }
+}

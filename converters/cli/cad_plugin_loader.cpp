@@ -22,6 +22,7 @@ struct PluginHandle {
   cad_plugin::LoadCadFn load_cad = nullptr;  // null when no candidate loaded
   cad_plugin::FitMeshFn fit_mesh = nullptr;
   cad_plugin::MeasureFn measure = nullptr;
+  cad_plugin::ProjectFn project = nullptr;   // optional entry point
   std::string failure;                       // why, one "path: reason" per candidate tried
 };
 
@@ -67,6 +68,7 @@ PluginHandle open_plugin() {
     handle.load_cad = reinterpret_cast<cad_plugin::LoadCadFn>(symbol);
     handle.fit_mesh = reinterpret_cast<cad_plugin::FitMeshFn>(fit_symbol);
     handle.measure = reinterpret_cast<cad_plugin::MeasureFn>(measure_symbol);
+    handle.project = reinterpret_cast<cad_plugin::ProjectFn>(dlsym(library, cad_plugin::kProjectSymbol));
     handle.failure.clear();
     return handle;
   }
@@ -127,6 +129,16 @@ CadConformity measure_through_plugin(const std::string& path, const CadOptions& 
   plugin.measure(path.c_str(), &options, &mesh, &result);
   rethrow(result.outcome);
   return result.conformity;
+}
+
+std::function<bool(int, int, Point3&)> cad_projector_through_plugin(const std::string& path,
+                                                                   const CadOptions& options) {
+  const PluginHandle& plugin = plugin_or_throw(path);
+  if (!plugin.project) return {};
+  const cad_plugin::ProjectFn project = plugin.project;
+  return [project, path, options](int edge, int face, Point3& p) {
+    return project(path.c_str(), &options, edge, face, p.data()) == 1;
+  };
 }
 
 }  // namespace qualmesh::cli

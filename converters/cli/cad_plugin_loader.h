@@ -8,6 +8,7 @@
 //  3. <that directory>/../lib/qualmesh/, an installed layout.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,5 +31,10 @@ CadFitReport fit_mesh_through_plugin(const std::string& path, const CadOptions& 
 
 // measure_against_cad(path, options, mesh) through the plugin.
 CadConformity measure_through_plugin(const std::string& path, const CadOptions& options, const TetMesh& mesh);
+
+// project_onto_cad(path, options, edge, face, p) through the plugin, as MeshOptions::project_to_boundary wants it;
+// empty when the plugin has no such entry point.
+std::function<bool(int, int, Point3&)> cad_projector_through_plugin(const std::string& path,
+                                                                   const CadOptions& options);
 
 }  // namespace qualmesh::cli

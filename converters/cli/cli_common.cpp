@@ -191,6 +191,16 @@ CadFitReport fit_to_cad_input(const std::string& path, const InputOptions& optio
 #endif
 }
 
+std::function<bool(int, int, Point3&)> cad_projector(const std::string& path, const InputOptions& options) {
+#if QUALMESH_WITH_CAD
+  return has_cad_faces(path) ? cad_projector_through_plugin(path, cad_options_of(options))
+                             : std::function<bool(int, int, Point3&)>{};
+#else
+  (void)path, (void)options;
+  return {};
+#endif
+}
+
 CadConformity measure_cad_input(const std::string& path, const InputOptions& options, const TetMesh& mesh) {
   require_regular_input_file(path);
 #if QUALMESH_WITH_CAD

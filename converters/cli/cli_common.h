@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,10 @@ bool has_cad_faces(const std::string& path);
 // Throws InputError like load_input (Unsupported when built without the CAD front end).
 CadFitReport fit_to_cad_input(const std::string& path, const InputOptions& options, const CadFitOptions& fit_options,
                               TetMesh& mesh);
+
+// MeshOptions::project_to_boundary for the CAD input at `path` (project_onto_cad through the plugin); empty for
+// other inputs.
+std::function<bool(int, int, Point3&)> cad_projector(const std::string& path, const InputOptions& options);
 
 // measure_against_cad (cad_import.h) for a mesh of the CAD input at `path`, through the plugin.
 CadConformity measure_cad_input(const std::string& path, const InputOptions& options, const TetMesh& mesh);

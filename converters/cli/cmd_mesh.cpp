@@ -95,6 +95,7 @@ int run_mesh(MeshArgs& args) {
   // instead of 4-7x). Surfaces and PLCs keep the paper's rule until the relaxed rule's defects there are gone.
   if (args.encroaching->count() == 0 && has_cad_faces(args.input))
     args.options.encroaching = MeshOptions::Encroaching::Steiner;
+  args.options.project_to_boundary = cad_projector(args.input, args.input_options);  // curved CAD faces and edges
   if (!check_mesh_input(plc, args.input, args.options, args.verbose)) return kExitBadInput;  // as `info` validates
   if (!check_size_estimate(plc, args.input, args.options, args.limits)) return kExitResource;  // mesh_limits.h
   args.options.cancel = make_cancel(args.limits);

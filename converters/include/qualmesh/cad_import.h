@@ -155,6 +155,13 @@ struct CadFitReport {
 CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options, TetMesh& mesh,
                              const CadFitOptions& fit_options = {});
 
+// Moves `p` onto CAD edge Edge<edge> (edge > 0), or else onto CAD face Face<face> (face > 0), of the model at
+// `path` read and healed with `options` (the numbering read_cad gives): the nearest point, by OpenCASCADE's
+// projection. False, and `p` unchanged, when the entity is straight or planar (nothing to move), out of range, or
+// the projection fails. For the mesher's boundary points (MeshOptions::project_to_boundary); keeps the projector of
+// the last model asked about. Throws InputError as read_cad does when the model must be read.
+bool project_onto_cad(const std::string& path, const CadOptions& options, int edge, int face, Point3& p);
+
 // How well a mesh of a CAD model fits it (what `qualmesh check MESH --ref MODEL.step` reports): every node of every
 // boundary face with label f is measured against CAD face Face<f> by distances_to_cad_faces, and the mesh volume
 // against OpenCASCADE's volume of the solids.

@@ -96,6 +96,14 @@ struct MeshOptions {
   // (MeshStatus::Cancelled) and mesh_plc() returns the mesh as it stands. Empty: never polled, no cost.
   std::function<bool()> cancel;
 
+  // CAD inputs (beyond the paper): moves a point onto CAD edge `edge` (> 0) or else CAD face `face` (> 0) and
+  // returns true, or leaves it and returns false (a straight edge, a plane, a failure). Rule 1 points on a segment
+  // with a CAD edge number (Segment::marker), or inside one curved face, and Rule 2 points on a facet with a CAD face
+  // number (Facet::marker) go through it before their conflict test, so they lie on the CAD surface rather than on
+  // its chords; a move above a quarter of the split element is refused. Empty: points stay on the PLC (the paper).
+  // The CLI binds it to OpenCASCADE (project_onto_cad, cad_import.h).
+  std::function<bool(int edge, int face, Point3& p)> project_to_boundary;
+
   // Called once on the extracted mesh, before the improvement pass (when meshing ended Ok): the CLI fits a CAD
   // input's boundary nodes onto the CAD surface here (fit_mesh_to_cad), so that the pass works on the mesh that is
   // written, and never moves a fitted node off its face (a boundary node off its facet's plane is Fixed there).

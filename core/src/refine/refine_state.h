@@ -234,6 +234,11 @@ bool find_conflict_zone(MeshState& s, const KPoint3& p, Ch3 hint, ConflictZone& 
 void collect_candidates(const MeshState& s, const ConflictZone& cz, Candidates& out);
 // Appends a vertex record (not yet in the triangulation); returns its id.
 Index add_vertex(MeshState& s, const Point3& p, VertexKind kind, Index host, double t = 0);
+
+// boundary_projection.cpp: a Rule 1 point on `segment`, a Rule 2 point on `facet`, moved onto the curved CAD edge or
+// face they stand for (MeshOptions::project_to_boundary) when that moves it by at most max_move; false otherwise.
+bool project_segment_point(const MeshState& s, Index segment, double max_move, Point3& p);
+bool project_facet_point(const MeshState& s, Index facet, double max_move, Point3& p);
 // Inserts vertex `id` into the hole of `cz` (consumed) and into its facets' 2D triangulations, gives the new cells
 // `region` (kUnknownRegion for boundary points: flooded later), counts it, and returns what changed; the caller
 // hands that to notify_insertion().

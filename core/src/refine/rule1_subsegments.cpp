@@ -10,6 +10,7 @@
 // that rounding put on a vertex. Entries are checked when popped (still consecutive on the segment, still
 // encroached or forced), so stale ones cost nothing.
 #include <algorithm>
+#include <cmath>
 
 #include "refine/refine_state.h"
 
@@ -46,7 +47,13 @@ Point3 Rule1Subsegments::refinement_point(const MeshState& s, Index segment, Ind
   const Segment& sg = s.complex.segments[segment];
   const Point3& a = s.point(sg.a);
   const Point3& b = s.point(sg.b);
-  return {a[0] + *t * (b[0] - a[0]), a[1] + *t * (b[1] - a[1]), a[2] + *t * (b[2] - a[2])};
+  Point3 p{a[0] + *t * (b[0] - a[0]), a[1] + *t * (b[1] - a[1]), a[2] + *t * (b[2] - a[2])};
+  // On a curved CAD edge or face: onto it (boundary_projection.cpp), by at most a quarter of the subsegment.
+  const Point3 &pu = s.point(u), &pv = s.point(v);
+  const double length =
+      std::sqrt((pu[0] - pv[0]) * (pu[0] - pv[0]) + (pu[1] - pv[1]) * (pu[1] - pv[1]) + (pu[2] - pv[2]) * (pu[2] - pv[2]));
+  project_segment_point(s, segment, 0.25 * length, p);
+  return p;
 }
 
 Conflict Rule1Subsegments::conflict(MeshState& s, const Point3& p, Ch3 hint, ConflictZone& cz) const {

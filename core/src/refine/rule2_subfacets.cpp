@@ -97,7 +97,11 @@ namespace {
 // Splits subfacet abc of `facet` at its circumcentre unless the conflict test rejects it; returns whether it
 // inserted the centre.
 bool split_subfacet(MeshState& s, Rule2Subfacets& level, Index facet, const std::array<Index, 3>& abc) {
-  const KPoint3 center = level.refinement_point(s, abc);
+  KPoint3 center = level.refinement_point(s, abc);
+  // On a curved CAD face: onto it (boundary_projection.cpp), by at most a quarter of the circumradius.
+  Point3 p = to_point3(center);
+  if (project_facet_point(s, facet, 0.25 * std::sqrt(CGAL::squared_distance(center, s.kpoint(abc[0]))), p))
+    center = to_kpoint(p);
   ConflictZone cz;
   Candidates cand;
   const Conflict conflict = level.conflict(s, facet, abc, center, cz, cand);
