@@ -157,7 +157,7 @@ Plc load_input(const std::string& path, const InputOptions& options, std::vector
     if (cad_size_used && options.size > 0) *cad_size_used = options.size;
     ReadOptions read_options;
     read_options.merge_coplanar = !options.keep_triangles;
-    return read_plc(path, read_options);
+    return read_plc(path, read_options, notes);
   }
   if (is_cad_input(path)) {
     require_regular_input_file(path);  // a directory or FIFO named .step is refused as the PLC readers refuse it

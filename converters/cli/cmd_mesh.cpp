@@ -23,6 +23,7 @@
 #include "qualmesh/error.h"
 #include "qualmesh/mesh_io.h"
 #include "qualmesh/mesher.h"
+#include "qualmesh/plc_io.h"
 #include "qualmesh/second_order.h"
 
 namespace qualmesh::cli {
@@ -88,7 +89,8 @@ int run_mesh(MeshArgs& args) {
   if (args.no_sliver_insertion) args.options.sliver_insertion = false;
   if (args.no_improve) args.options.improve = false;
   double size = 0;  // the target edge length (--size, or a CAD input's default): the engine's too
-  const Plc plc = load_input(args.input, args.input_options, nullptr, &size);
+  std::vector<std::string> notes;  // a surface's repairs (CAD inputs' notes are `info`'s)
+  const Plc plc = load_input(args.input, args.input_options, &notes, &size);
   args.options.target_edge_length = size;
   // A CAD input's surface is made for the volume mesher (well-shaped triangles at the size field), so its default is
   // the relaxed rule: input vertices do not encroach (issue 16's decision; at equal size about Gmsh's node count
@@ -135,6 +137,8 @@ int run_mesh(MeshArgs& args) {
   write_tet_mesh(result.mesh, args.output);
   const MeshStats& st = result.stats;
   std::printf("input:       %zu vertices, %zu facets\n", plc.vertices.size(), plc.facets.size());
+  if (is_plc_path(args.input))
+    for (const std::string& note : notes) std::printf("source:      %s\n", note.c_str());
   std::printf("output:      %zu vertices (%zu Steiner), %zu tetrahedra, %zu boundary faces\n",
               result.mesh.points.size(), st.num_steiner_vertices, result.mesh.tets.size(), result.mesh.faces.size());
   std::fputs(fit_lines.c_str(), stdout);

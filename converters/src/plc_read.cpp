@@ -59,42 +59,35 @@ std::string point_text(const Point3& p) {
 // zero area (exact predicates).
 void refuse_if_degenerate(const std::vector<Point3>& vertices, const std::vector<Index>& loop,
                           const SurfaceSoup& soup, std::size_t f, const std::string& path) {
-  const long line = f < soup.lines.size() ? soup.lines[f] : 0;
-  const std::string name = std::string(soup.face_word) + " " + std::to_string(static_cast<long>(f) + soup.first_face_number);
+  const std::size_t o = f < soup.origin.size() ? soup.origin[f] : f;  // the file's face index
+  const long line = o < soup.lines.size() ? soup.lines[o] : 0;
+  const std::string name = std::string(soup.face_word) + " " + std::to_string(static_cast<long>(o) + soup.first_face_number);
   std::string corners;
   for (Index v : loop) corners += (corners.empty() ? "" : ", ") + point_text(vertices[v]);
-  const ElementIds ids{{}, {}, {static_cast<Index>(f)}, {}};
+  const ElementIds ids{{}, {}, {static_cast<Index>(o)}, {}};
   if (repeats_a_vertex(loop)) {
     std::vector<Index> sorted = loop;
     std::sort(sorted.begin(), sorted.end());
     const Index repeated = *std::adjacent_find(sorted.begin(), sorted.end());
     throw InputError(ErrorCode::DegenerateFacet,
                      name + " repeats the vertex at " + point_text(vertices[repeated]) + " (its corners: " + corners +
-                         "): a facet needs 3 distinct corners",
+                         "): a facet needs 3 distinct corners" +
+                         (loop.size() == 3 ? "" : "; only triangles are repaired (dropped)"),
                      path, line, ids);
   }
-  Plc alone;
-  Facet facet;
-  std::vector<Index> local;
-  for (Index v : loop) {
-    local.push_back(static_cast<Index>(alone.vertices.size()));
-    alone.vertices.push_back(vertices[v]);
-  }
-  facet.polygons.push_back(std::move(local));
-  alone.facets.push_back(std::move(facet));
-  ValidateOptions validate;
-  validate.require_closed = false;
-  validate.check_intersections = false;
-  for (const Problem& problem : validate_plc(alone, validate).problems) {
-    if (problem.code != ErrorCode::DegenerateFacet) continue;
+  if (has_zero_area(vertices, loop))
     throw InputError(ErrorCode::DegenerateFacet,
-                     name + " has zero area: its corners " + corners + " are collinear", path, line, ids);
-  }
+                     name + " has zero area: its corners " + corners + " are collinear" +
+                         (loop.size() == 3 ? "; it is not repaired because no single face holds its long edge the "
+                                             "other way round (a closed surface has exactly one)"
+                                           : "; only triangles are repaired"),
+                     path, line, ids);
 }
 
 }  // namespace
 
-Plc finish_surface(SurfaceSoup soup, const std::string& path, const ReadOptions& options) {
+Plc finish_surface(SurfaceSoup soup, const std::string& path, const ReadOptions& options,
+                   std::vector<std::string>* notes) {
   if (soup.faces.empty()) throw InputError(ErrorCode::Empty, "the file holds no facets", path);
   refuse_out_of_scale(soup.vertices, path);  // first: out of scale, every face looks degenerate
   // Exact duplicates: the first occurrence keeps its place.
@@ -104,10 +97,16 @@ Plc finish_surface(SurfaceSoup soup, const std::string& path, const ReadOptions&
     auto [it, inserted] = first_index.emplace(soup.vertices[i], static_cast<Index>(i));
     merged[i] = it->second;
   }
+  for (auto& face : soup.faces)
+    for (Index& v : face) v = merged[v];
+  if (options.repair_degenerate) {
+    const SurfaceRepairs repairs = repair_degenerate_triangles(soup);
+    if (notes && !repairs.summary().empty()) notes->push_back(repairs.summary());
+  }
   // Used vertices (after merging), renumbered in order of their (merged) position in the file.
   std::vector<char> used(soup.vertices.size(), 0);
   for (const auto& face : soup.faces) {
-    for (Index v : face) used[merged[v]] = 1;
+    for (Index v : face) used[v] = 1;
   }
   std::vector<Index> new_index(soup.vertices.size(), kNoIndex);
   Plc plc;
@@ -122,7 +121,7 @@ Plc finish_surface(SurfaceSoup soup, const std::string& path, const ReadOptions&
     Facet facet;
     std::vector<Index> loop;
     loop.reserve(soup.faces[f].size());
-    for (Index v : soup.faces[f]) loop.push_back(new_index[merged[v]]);
+    for (Index v : soup.faces[f]) loop.push_back(new_index[v]);
     facet.polygons.push_back(std::move(loop));
     facet.marker = soup.markers.empty() ? 0 : soup.markers[f];
     plc.facets.push_back(std::move(facet));
@@ -184,7 +183,7 @@ bool is_plc_path(const std::string& path) {
          ext == ".mesh";
 }
 
-Plc read_plc(const std::string& path, const ReadOptions& options) {
+Plc read_plc(const std::string& path, const ReadOptions& options, std::vector<std::string>* notes) {
   const std::string ext = plc_io::lower_extension(path);
   Plc plc;
   if (ext == ".poly" || ext == ".smesh") {
@@ -192,13 +191,13 @@ Plc read_plc(const std::string& path, const ReadOptions& options) {
   } else if (ext == ".node") {
     plc = plc_io::read_tetgen_node(path);
   } else if (ext == ".off") {
-    plc = plc_io::read_off(path, options);
+    plc = plc_io::read_off(path, options, notes);
   } else if (ext == ".stl") {
-    plc = plc_io::read_stl(path, options);
+    plc = plc_io::read_stl(path, options, notes);
   } else if (ext == ".obj") {
-    plc = plc_io::read_obj(path, options);
+    plc = plc_io::read_obj(path, options, notes);
   } else if (ext == ".mesh") {
-    plc = plc_io::read_medit(path, options);
+    plc = plc_io::read_medit(path, options, notes);
   } else {
     throw InputError(ErrorCode::Unsupported,
                      "unknown PLC format '" + ext +

@@ -20,7 +20,7 @@ bool is_keyword(std::string_view token) {
 
 }  // namespace
 
-Plc read_medit(const std::string& path, const ReadOptions& options) {
+Plc read_medit(const std::string& path, const ReadOptions& options, std::vector<std::string>* notes) {
   TextScanner scanner(read_whole_file(path), path, true);
   SurfaceSoup soup;
   bool saw_version = false;
@@ -109,7 +109,7 @@ Plc read_medit(const std::string& path, const ReadOptions& options) {
   if (soup.faces.empty()) {
     throw InputError(ErrorCode::Empty, "no 'Triangles' or 'Quadrilaterals' section: the file holds no surface", path);
   }
-  return finish_surface(std::move(soup), path, options);
+  return finish_surface(std::move(soup), path, options, notes);
 }
 
 }  // namespace qualmesh::plc_io

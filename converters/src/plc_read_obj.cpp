@@ -10,7 +10,7 @@
 
 namespace qualmesh::plc_io {
 
-Plc read_obj(const std::string& path, const ReadOptions& options) {
+Plc read_obj(const std::string& path, const ReadOptions& options, std::vector<std::string>* notes) {
   TextScanner scanner(read_whole_file(path), path, true);
   std::vector<std::string_view> tokens;
   SurfaceSoup soup;
@@ -81,7 +81,7 @@ Plc read_obj(const std::string& path, const ReadOptions& options) {
   }
   if (soup.faces.empty()) throw InputError(ErrorCode::Empty, "the file holds no faces", path);
   soup.lines = std::move(face_lines);
-  return finish_surface(std::move(soup), path, options);
+  return finish_surface(std::move(soup), path, options, notes);
 }
 
 }  // namespace qualmesh::plc_io

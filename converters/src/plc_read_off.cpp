@@ -16,7 +16,7 @@ constexpr std::size_t kMinVertexBytes = 6;  // "0 0 0\n"
 constexpr std::size_t kMinFaceBytes = 8;    // "3 0 1 2\n"
 }  // namespace
 
-Plc read_off(const std::string& path, const ReadOptions& options) {
+Plc read_off(const std::string& path, const ReadOptions& options, std::vector<std::string>* notes) {
   TextScanner scanner(read_whole_file(path), path, true);
   std::vector<std::string_view> tokens;
   if (!scanner.next_line(tokens)) throw InputError(ErrorCode::Empty, "the file is empty", path);
@@ -96,7 +96,7 @@ Plc read_off(const std::string& path, const ReadOptions& options) {
     soup.lines.push_back(scanner.line());
   }
   soup.first_face_number = 0;
-  return finish_surface(std::move(soup), path, options);
+  return finish_surface(std::move(soup), path, options, notes);
 }
 
 }  // namespace qualmesh::plc_io

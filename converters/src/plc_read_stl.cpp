@@ -151,7 +151,7 @@ bool starts_with_solid(const std::string& data) {
 
 }  // namespace
 
-Plc read_stl(const std::string& path, const ReadOptions& options) {
+Plc read_stl(const std::string& path, const ReadOptions& options, std::vector<std::string>* notes) {
   std::string data = read_whole_file(path);
   if (data.empty()) throw InputError(ErrorCode::Empty, "the file is empty", path);
   if (data.size() >= kHeaderBytes) {
@@ -159,7 +159,7 @@ Plc read_stl(const std::string& path, const ReadOptions& options) {
     const std::uint64_t expected = kHeaderBytes + kTriangleBytes * count;
     if (expected == data.size()) {
       if (count == 0) throw InputError(ErrorCode::Empty, "the binary STL file holds 0 triangles", path);
-      return finish_surface(read_binary(data, path), path, options);
+      return finish_surface(read_binary(data, path), path, options, notes);
     }
     // Not binary by size. ASCII STL starts with "solid" and holds no NUL byte (a binary header or float does).
     if (!starts_with_solid(data) || data.find('\0') != std::string::npos) {
@@ -175,7 +175,7 @@ Plc read_stl(const std::string& path, const ReadOptions& options) {
                          " bytes is too short for binary STL and it does not start with 'solid'",
                      path);
   }
-  return finish_surface(read_ascii(std::move(data), path), path, options);
+  return finish_surface(read_ascii(std::move(data), path), path, options, notes);
 }
 
 }  // namespace qualmesh::plc_io

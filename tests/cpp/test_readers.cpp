@@ -11,6 +11,7 @@
 #include "qualmesh/error.h"
 #include "qualmesh/plc.h"
 #include "qualmesh/plc_io.h"
+#include "qualmesh/plc_validate.h"
 #include "test_support.h"
 
 namespace qualmesh {
@@ -309,6 +310,109 @@ TEST(WritePlc, UnknownExtensionIsUnsupported) {
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_EQ(e.code(), ErrorCode::Unsupported);
+  }
+}
+
+
+// Degenerate surface triangles (issue 18): repaired exactly, as TetGen meshes such files, or refused by face number.
+// The unit cube, outward triangles; vertex 8 = (0.5, 0, 0) is the middle of the edge 0-1.
+const char* kCubeVertices = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0 0\n";
+const std::vector<std::string> kCubeTriangles = {"0 2 1", "0 3 2", "4 5 6", "4 6 7", "0 1 5", "0 5 4",
+                                                 "3 7 6", "3 6 2", "0 4 7", "0 7 3", "1 2 6", "1 6 5"};
+
+std::string off_text(const std::vector<std::string>& triangles) {
+  std::string text = "OFF\n9 " + std::to_string(triangles.size()) + " 0\n" + kCubeVertices;
+  for (const std::string& t : triangles) text += "3 " + t + "\n";
+  return text;
+}
+
+// Volume enclosed by the facets (each polygon fanned from its first vertex): the divergence theorem.
+double enclosed_volume(const Plc& plc) {
+  double six_v = 0;
+  for (const Facet& f : plc.facets)
+    for (const auto& loop : f.polygons)
+      for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
+        const Point3 &a = plc.vertices[loop[0]], &b = plc.vertices[loop[i]], &c = plc.vertices[loop[i + 1]];
+        six_v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                 a[2] * (b[0] * c[1] - b[1] * c[0]);
+      }
+  return six_v / 6;
+}
+
+TEST(SurfaceRepair, TriangleRepeatingAVertexIsDropped) {
+  const auto dir = test::temp_dir("repair-repeat");
+  std::vector<std::string> triangles = kCubeTriangles;
+  triangles.insert(triangles.begin() + 3, "5 5 6");
+  test::write_text(dir / "cube.off", off_text(triangles));
+  std::vector<std::string> notes;
+  const Plc plc = read_plc((dir / "cube.off").string(), unmerged(), &notes);
+  EXPECT_EQ(plc.facets.size(), 12u);
+  EXPECT_TRUE(validate_plc(plc).ok());
+  EXPECT_DOUBLE_EQ(enclosed_volume(plc), 1.0);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("1 triangle(s) repeating a vertex dropped, 0 collinear"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[0].find("face 3 (line 15) repeats a vertex"), std::string::npos) << notes[0];  // OFF counts from 0
+}
+
+// A T-junction in disguise: the bottom has vertex 8 in its edge 1-0, the front does not, and the triangle (1, 0, 8)
+// of zero area closes the gap. The repair drops it and splits the front triangle (0, 1, 5) at 8.
+TEST(SurfaceRepair, CollinearTriangleSplitsItsNeighbourAcrossTheLongEdge) {
+  const auto dir = test::temp_dir("repair-collinear");
+  std::vector<std::string> triangles = kCubeTriangles;
+  triangles[0] = "0 2 8";
+  triangles.push_back("8 2 1");
+  triangles.push_back("1 0 8");
+  test::write_text(dir / "cube.off", off_text(triangles));
+  // Without the repair the surface is closed but the triangle is refused, by its number and line.
+  ReadOptions no_repair = unmerged();
+  no_repair.repair_degenerate = false;
+  try {
+    read_plc((dir / "cube.off").string(), no_repair);
+    FAIL() << "the collinear triangle was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::DegenerateFacet);
+    EXPECT_EQ(e.line(), 25);
+    EXPECT_NE(std::string(e.what()).find("face 13 has zero area"), std::string::npos) << e.what();
+  }
+  std::vector<std::string> notes;
+  const Plc plc = read_plc((dir / "cube.off").string(), unmerged(), &notes);
+  EXPECT_EQ(plc.facets.size(), 14u);  // 13 triangles + 1 from the split - the collinear one
+  const ValidationReport report = validate_plc(plc);
+  EXPECT_TRUE(report.ok()) << (report.problems.empty() ? "" : report.problems[0].message);
+  EXPECT_DOUBLE_EQ(enclosed_volume(plc), 1.0);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("face 13 (line 25) has collinear corners: dropped, and face 4 (line 16) across its long "
+                          "edge split at its middle corner (0.5, 0, 0)"),
+            std::string::npos)
+      << notes[0];
+  // Merged, the front and the bottom are squares with vertex 8 in their shared edge.
+  const Plc merged = read_plc((dir / "cube.off").string());
+  ASSERT_EQ(merged.facets.size(), 6u);
+  std::size_t with_middle = 0;
+  for (const Facet& f : merged.facets) {
+    const auto& loop = f.polygons[0];
+    with_middle += std::count_if(loop.begin(), loop.end(), [&](Index v) { return merged.vertices[v] == Point3{0.5, 0, 0}; });
+  }
+  EXPECT_EQ(with_middle, 2u);
+  EXPECT_TRUE(validate_plc(merged).ok());
+}
+
+TEST(SurfaceRepair, CollinearTriangleWithoutANeighbourIsRefusedByItsNumber) {
+  const auto dir = test::temp_dir("repair-refused");
+  std::vector<std::string> triangles = kCubeTriangles;
+  triangles.push_back("0 1 8");  // its long edge 0-1 is held the other way round by the bottom and by itself only
+  triangles.push_back("1 0 5");  // a second face holding 1 -> 0 besides the bottom: no single neighbour
+  test::write_text(dir / "bad.off", off_text(triangles));
+  try {
+    read_plc((dir / "bad.off").string());
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::DegenerateFacet);
+    EXPECT_EQ(e.line(), 24);
+    EXPECT_NE(std::string(e.what()).find("face 12 has zero area: its corners (0, 0, 0), (1, 0, 0), (0.5, 0, 0) are "
+                                         "collinear; it is not repaired"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -108,7 +108,18 @@ INPUTS = {
     "self_intersecting.stl": _two_overlapping_tets_stl(),
     "duplicate_vertex.off": off(CUBE + [CUBE[0]], CUBE_QUADS),
     "degenerate_facet.off": off(CUBE, CUBE_QUADS + [(0, 1, 2, 3, 0)]),
-    "collinear_triangle.off": off(CUBE + [(0.5, 0, 0)], CUBE_QUADS[:2] + CUBE_QUADS[3:] + [(0, 1, 8)]),
+    # its long edge 1 -> 0 is on no face the other way round (the front quad, which holds 0 -> 1, is missing): no
+    # repair, refused
+    "collinear_triangle.off": off(CUBE + [(0.5, 0, 0)], CUBE_QUADS[:2] + CUBE_QUADS[3:] + [(1, 0, 8)]),
+    # a closed cube with an extra triangle (5, 5, 6): dropped
+    "repeated_vertex_triangle.off": off(CUBE, CUBE_QUADS + [(5, 5, 6)]),
+    # a T-junction in disguise: the bottom has the middle 8 of edge 0-1, the front quad (face 2) does not, and the
+    # triangle (1, 0, 8) of zero area closes the gap; the front quad gets 8 in its edge 0-1
+    "t_junction_triangle.off": off(CUBE + [(0.5, 0, 0)], [(0, 3, 2, 1, 8)] + CUBE_QUADS[1:] + [(1, 0, 8)]),
+    # the same as triangles: the bottom's are (0, 3, 2), (0, 2, 8), (8, 2, 1); the front's first, triangle 3, is split
+    "t_junction_triangle.stl": ascii_stl(triangles_of(CUBE, CUBE_QUADS[1:])
+                                         + [[(CUBE + [(0.5, 0, 0)])[i] for i in t]
+                                            for t in ((0, 3, 2), (0, 2, 8), (8, 2, 1), (1, 0, 8))]),
     "single_triangle.off": off([(0, 0, 0), (1, 0, 0), (0, 1, 0)], [(0, 1, 2)]),
     "flat_square.off": off(CUBE[:4], [(0, 1, 2, 3)]),
     "whole_domain_hole.poly": poly(CUBE, CUBE_QUADS, holes=[(0.5, 0.5, 0.5)]),

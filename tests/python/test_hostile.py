@@ -185,6 +185,7 @@ def test_hostile(case, qualmesh_exe, input_dir, limit_memory, tmp_path):
                  f"stdout (tail):\n{stdout[-2000:]}\n{note}")
     assert proc.returncode == case.code, described
     assert re.search(case.stderr, stderr, re.MULTILINE), f"stderr does not match /{case.stderr}/\n{described}"
+    assert re.search(case.stdout, stdout, re.MULTILINE), f"stdout does not match /{case.stdout}/\n{described}"
     unprintable = sorted({c for c in stderr if (ord(c) < 32 and c != "\n") or c in "\x7f\ufffd"})
     assert not unprintable, f"stderr holds raw bytes {unprintable!r}\n{described}"
     if signalled and signalled[0].startswith("signal:"):

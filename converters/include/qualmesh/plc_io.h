@@ -10,6 +10,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "qualmesh/plc.h"
 
@@ -20,6 +21,12 @@ struct ReadOptions {
   // (merge_coplanar_facets() of facet_merge.h), so that an STL box becomes six squares. TetGen files are never
   // merged.
   bool merge_coplanar = true;
+  // Surface readers: repair degenerate triangles exactly, as TetGen meshes such files (issue 18): drop a triangle
+  // that repeats a vertex; drop one with three collinear corners (a T-junction in disguise) and split the face across
+  // its long edge at the middle corner. The surface and its volume are unchanged. read_plc's `notes` say what was
+  // done. A degenerate face that cannot be repaired so is refused (InputError DegenerateFacet, with its number,
+  // line and corners).
+  bool repair_degenerate = true;
 };
 
 // Reads a PLC, choosing the reader by extension (case-insensitive):
@@ -30,7 +37,8 @@ struct ReadOptions {
 //                 Quadrilaterals, Tetrahedra ignored). Exactly duplicated vertices are merged (first occurrence
 //                 order) and vertices used by no facet are dropped.
 // Plc::name is set to the file name. Throws InputError (Io, Parse, IndexOutOfRange, NonFinite, Empty, Unsupported).
-Plc read_plc(const std::string& path, const ReadOptions& options = {});
+// `notes`, when given, receives a line for each repair made ("repaired: ...").
+Plc read_plc(const std::string& path, const ReadOptions& options = {}, std::vector<std::string>* notes = nullptr);
 
 // True when the extension of `path` is one that read_plc() accepts.
 bool is_plc_path(const std::string& path);
