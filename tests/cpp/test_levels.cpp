@@ -10,7 +10,8 @@
 //     boundary stage recovers every subsegment and subfacet);
 //   - RefineParams and EncroachmentPolicy derive what the options say;
 //   - the same input gives the same mesh twice in one process, under either encroachment rule;
-//   - re-refining a refined mesh adds nothing (CGAL Mesh_3's test_meshing_utilities property).
+//   - re-refining a refined mesh adds nothing (CGAL Mesh_3's test_meshing_utilities property);
+//   - boundary points projected onto a curved surface (MeshOptions::project_to_boundary) land on it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,6 +24,7 @@
 
 #include "qualmesh/mesher.h"
 #include "qualmesh/plc_io.h"
+#include "qualmesh/quality.h"
 #include "refine/refine_state.h"
 #include "test_support.h"
 
@@ -381,3 +383,90 @@ TEST(Levels, ReRefiningARefinedMeshAddsNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+// A 12-gon prism standing for a cylinder of radius 1 (z in [0, 2]), as the CAD front end hands one over: the side
+// quads carry CAD face 1, the caps faces 2 and 3 (planes), the cap circles CAD edges 10 (z = 0) and 11 (z = 2).
+Plc cylinder_prism() {
+  Plc plc;
+  const int n = 12;
+  for (int z = 0; z < 2; ++z)
+    for (int i = 0; i < n; ++i)
+      plc.vertices.push_back({std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 2.0 * z});
+  qualmesh::Facet bottom, top;
+  bottom.marker = 2;
+  top.marker = 3;
+  bottom.polygons.emplace_back();
+  top.polygons.emplace_back();
+  for (int i = 0; i < n; ++i) {
+    const Index j = (i + 1) % n;
+    qualmesh::Facet side;
+    side.marker = 1;
+    side.polygons.push_back({Index(i), j, Index(n + j), Index(n + i)});
+    plc.facets.push_back(side);
+    bottom.polygons[0].push_back(Index(n - 1 - i));
+    top.polygons[0].push_back(Index(n + i));
+    plc.segments.push_back({Index(i), j, 10});
+    plc.segments.push_back({Index(n + i), Index(n + j), 11});
+  }
+  plc.facets.push_back(bottom);
+  plc.facets.push_back(top);
+  return plc;
+}
+
+// The exact cylinder: CAD edges 10 and 11 are its circles, face 1 its side; the planes are not projected.
+bool onto_cylinder(int edge, int face, Point3& p) {
+  if (edge != 10 && edge != 11 && face != 1) return false;
+  const double r = std::hypot(p[0], p[1]);
+  if (r == 0) return false;
+  p = {p[0] / r, p[1] / r, edge == 10 ? 0.0 : edge == 11 ? 2.0 : p[2]};
+  return true;
+}
+
+// Largest distance from the cylinder of a node on a side face, and how many side nodes there are.
+std::pair<double, std::size_t> off_cylinder(const Plc& plc, const qualmesh::TetMesh& mesh) {
+  std::vector<char> side(mesh.points.size(), 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    if (mesh.face_facet[f] >= 0 && plc.facets[mesh.face_facet[f]].marker == 1)
+      for (Index v : mesh.faces[f]) side[v] = 1;
+  double worst = 0;
+  std::size_t count = 0;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    if (side[v]) {
+      ++count;
+      worst = std::max(worst, std::fabs(std::hypot(mesh.points[v][0], mesh.points[v][1]) - 1));
+    }
+  return {worst, count};
+}
+
+}  // namespace
+
+// MeshOptions::project_to_boundary (boundary_projection.cpp): the points Rules 1 and 2 put on the prism's side
+// subsegments and subfacets go onto the cylinder, so every node of the side lies on it, and the mesh's volume is
+// closer to the cylinder's (2 pi) than the prism's; without the projection they stay on the chords.
+TEST(Levels, BoundaryPointsProjectedOntoTheCurvedSurface) {
+  const Plc input = cylinder_prism();
+  MeshOptions options;
+  options.encroaching = MeshOptions::Encroaching::Steiner;
+  options.target_edge_length = 0.25;
+  const auto plain = qualmesh::mesh_plc(input, options);
+  options.project_to_boundary = onto_cylinder;
+  const auto projected = qualmesh::mesh_plc(input, options);
+  ASSERT_FALSE(projected.mesh.tets.empty());
+  EXPECT_FALSE(projected.stats.boundary_projection_dropped);
+  EXPECT_FALSE(projected.stats.encroaching_fell_back);
+  const auto [plain_off, plain_nodes] = off_cylinder(input, plain.mesh);
+  const auto [off, nodes] = off_cylinder(input, projected.mesh);
+  EXPECT_GT(plain_off, 1e-3) << "the unprojected side nodes sit on the chords";
+  EXPECT_GT(nodes, 100u);
+  EXPECT_LT(off, 1e-12) << nodes << " side nodes";
+  double volume = 0, prism = 0;
+  for (const auto& t : projected.mesh.tets) volume += qualmesh::tet_signed_volume(projected.mesh.points[t[0]],
+      projected.mesh.points[t[1]], projected.mesh.points[t[2]], projected.mesh.points[t[3]]);
+  for (const auto& t : plain.mesh.tets) prism += qualmesh::tet_signed_volume(plain.mesh.points[t[0]],
+      plain.mesh.points[t[1]], plain.mesh.points[t[2]], plain.mesh.points[t[3]]);
+  EXPECT_NEAR(prism, 2 * 12 * 0.5 * std::sin(2 * M_PI / 12), 1e-9);  // conforming: exactly the prism
+  EXPECT_GT(volume, prism + 0.5 * (2 * M_PI - prism));  // more than half of the way to the cylinder
+  EXPECT_LT(volume, 2 * M_PI);
+}
