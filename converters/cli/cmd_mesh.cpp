@@ -143,8 +143,8 @@ int run_mesh(MeshArgs& args) {
               result.mesh.points.size(), st.num_steiner_vertices, result.mesh.tets.size(), result.mesh.faces.size());
   std::fputs(fit_lines.c_str(), stdout);
   if (st.boundary_projection_dropped)
-    std::printf("encroaching: steiner mode gave up with boundary points projected onto the CAD surface (-v says "
-                "why); meshed again with them on the facets (the CAD fit moves them)\n");
+    std::printf("projection:  meshing with boundary points projected onto the CAD surface gave up (-v says why); "
+                "meshed again with them on the facets (the CAD fit moves them)\n");
   if (st.encroaching_fell_back)
     std::printf("encroaching: steiner mode gave up (-v says why); meshed again with the paper's rule\n");
   std::printf("insertions:  rule 1 %zu, rule 2 %zu, rule 3 %zu; %zu centres rejected; %zu small-angle skips\n",

@@ -137,8 +137,9 @@ struct MeshStats {
   // Encroaching::Steiner only: it left a subsegment or subfacet missing, or its conflict zones grew too large, so
   // the input was meshed again from the start with the paper's rule (Encroaching::All); the figures are that run's.
   bool encroaching_fell_back = false;
-  // MeshOptions::project_to_boundary was set and the relaxed rule gave up with it: the input was meshed again without
-  // it (before falling back to the paper's rule), so Rule 1 and 2 points stayed on the facets.
+  // MeshOptions::project_to_boundary was set and meshing gave up with it (the relaxed rule gave up, or pumping added
+  // more than a tenth of the vertices it started with plus 200): the input was meshed again without it (before falling
+  // back to the paper's rule), so Rule 1 and 2 points stayed on the facets.
   bool boundary_projection_dropped = false;
   std::size_t num_tets = 0;                   // tetrahedra in the output
   std::size_t num_boundary_faces = 0;         // faces in the output that lie on input facets

@@ -131,6 +131,7 @@ InsertionResult insert_vertex(MeshState& s, Index id, ConflictZone& cz, const Ca
   if (region < 0 && s.regions_known)
     for (const HoleFace& o : outer) o.new_cell()->info().guess = o.region;
   if (s.tr.number_of_vertices() >= s.params.max_vertices) s.vertex_limit_reached = true;
+  if (s.tr.number_of_vertices() >= s.pumping_vertex_budget) s.projection_runaway = s.vertex_limit_reached = true;
   s.poll_cancel();
 
   // The facets' 2D triangulations (Section 3.2's subfacets): the new vertex's stars there are new subfacets.

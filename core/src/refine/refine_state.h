@@ -105,6 +105,11 @@ struct MeshState {
   MeshStage stage = MeshStage::Initial;
   bool vertex_limit_reached = false;  // also set on cancellation: every stage stops as at the vertex limit
   bool cancelled = false;             // MeshOptions::cancel returned true
+  // MeshOptions::project_to_boundary's safety net: the vertex count the pumping stage may reach (set when it
+  // begins); past it, projection_runaway and vertex_limit_reached stop every stage, and mesh_plc()
+  // meshes again without the projection.
+  std::size_t pumping_vertex_budget = static_cast<std::size_t>(-1);
+  bool projection_runaway = false;
   std::size_t cancel_polls = 0;
 
   // Polls MeshOptions::cancel every 64 calls; true (and vertex_limit_reached) once it has said stop.
