@@ -330,11 +330,14 @@ def test_thick_cylinder_matches_lame_and_stays_on_the_cad_surface(run_qualmesh, 
 
 
 CAD_FILES = sorted(p.name for p in (SHARED_DIR / "data" / "cad").glob("*")) if (SHARED_DIR / "data" / "cad").exists() else []
-# Default second-order meshes too big for every CI run (nodes measured 2026-12-01 before the CAD size field): meshing takes 13-325 s and the
-# direct solver 4-16 GB. They run with QUALMESH_SLOW_TESTS=1 (the closing note of issue 14 has that run's figures).
+# Files whose run is too long for every CI run. They run with QUALMESH_SLOW_TESTS=1. Measured 2026-12-02 (default
+# size, --order 2, mesh + ccx, with a benchmark running beside): 918_pump 54 s and 1385_Laufrad 78 s, both pass
+# (18.5k and 43k corner nodes); U_Joint_2 and bottle did not mesh within 300 s at the default size (bottle's
+# tessellated surface makes the relaxed rule give up, and the paper's rule then runs for minutes). wrenchnut (28 s)
+# and Zylkopf (its mesh took 20 min before the projection safety net, 8.5 s after) run in every CI run.
 SLOW_CAD_FILES = {
-    "U_Joint_2.stp": 1122422, "bottle.brep": 445764, "1385_Laufrad_1000.stp": 419496,
-    "918_pump_carter_sup_21_03_2006.stp": 287679, "wrenchnut.stp": 216835, "Zylkopf.stp": 214936,
+    "U_Joint_2.stp": "does not mesh within 300 s", "bottle.brep": "does not mesh within 300 s",
+    "1385_Laufrad_1000.stp": "78 s", "918_pump_carter_sup_21_03_2006.stp": "54 s",
 }
 
 
@@ -352,7 +355,7 @@ ENGINE_FLAT_TET = {"bottle.brep"}
 def test_ccx_runs_the_second_order_deck_of_every_cad_file(run_qualmesh, tmp_path, name):
     require_tool("ccx")
     if name in SLOW_CAD_FILES and os.environ.get("QUALMESH_SLOW_TESTS") != "1":
-        pytest.skip(f"{name}: {SLOW_CAD_FILES[name]} nodes at the default size; set QUALMESH_SLOW_TESTS=1 to run it")
+        pytest.skip(f"{name}: {SLOW_CAD_FILES[name]} at the default size; set QUALMESH_SLOW_TESTS=1 to run it")
     mesh = tmp_path / "part.inp"
     result = run_qualmesh("mesh", SHARED_DIR / "data" / "cad" / name, "--order", "2", "-o", mesh)
     if result.returncode == 2:
