@@ -22,8 +22,6 @@ std::string lower_extension(const std::string& path) {
   return to_lower(std::filesystem::path(path).extension().string());
 }
 
-namespace {
-
 bool repeats_a_vertex(const std::vector<Index>& loop) {
   std::vector<Index> sorted = loop;
   std::sort(sorted.begin(), sorted.end());
@@ -48,6 +46,8 @@ bool is_degenerate_suspect(const std::vector<Point3>& vertices, const std::vecto
   }
   return true;
 }
+
+namespace {
 
 std::string point_text(const Point3& p) {
   char text[100];

@@ -42,6 +42,13 @@ struct SurfaceRepairs {
 // are never repaired. Sets soup.origin.
 SurfaceRepairs repair_degenerate_triangles(SurfaceSoup& soup);
 
+// True when `loop` names a vertex twice.
+bool repeats_a_vertex(const std::vector<Index>& loop);
+
+// A face that may be degenerate: fewer than 3 vertices, a repeated vertex, or corners collinear up to rounding. The
+// exact verdict is has_zero_area's.
+bool is_degenerate_suspect(const std::vector<Point3>& vertices, const std::vector<Index>& loop);
+
 // True when validate_plc finds the polygon `loop` (indices into vertices) degenerate: exact predicates.
 bool has_zero_area(const std::vector<Point3>& vertices, const std::vector<Index>& loop);
 

@@ -22,21 +22,9 @@
 namespace qualmesh::plc_io {
 namespace {
 
-bool repeats(const std::vector<Index>& loop) {
-  std::vector<Index> sorted = loop;
-  std::sort(sorted.begin(), sorted.end());
-  return std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
-}
-
-// Three distinct points exactly on one line (the fast test first, the exact one of validate_plc after it).
+// Three distinct corners exactly on one line.
 bool collinear(const std::vector<Point3>& vertices, const std::vector<Index>& t) {
-  const Point3 &a = vertices[t[0]], &b = vertices[t[1]], &c = vertices[t[2]];
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double w[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  const double sq_w = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-  const double sq = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(sq_w <= 1e-20 * sq)) return false;
-  return has_zero_area(vertices, t);
+  return !repeats_a_vertex(t) && is_degenerate_suspect(vertices, t) && has_zero_area(vertices, t);
 }
 
 // The corner of an exactly collinear triangle that lies between the other two: along the axis where the three spread
@@ -105,7 +93,7 @@ SurfaceRepairs repair_degenerate_triangles(SurfaceSoup& soup) {
     for (std::size_t f = 0; f < count; ++f) {
       if (dead[f] || touched[f] || faces[f].size() != 3) continue;
       const std::vector<Index> t = faces[f];
-      if (repeats(t)) {
+      if (repeats_a_vertex(t)) {
         dead[f] = touched[f] = 1;
         ++repairs.num_dropped;
         if (repairs.examples.size() < 3) repairs.examples.push_back(name(f) + " repeats a vertex: dropped");
@@ -122,7 +110,7 @@ SurfaceRepairs repair_degenerate_triangles(SurfaceSoup& soup) {
         if (!dead[it->second] && it->second != f) neighbour = it->second, ++found;
       if (found != 1 || touched[neighbour]) continue;
       std::vector<Index>& g = faces[neighbour];
-      if (g.size() == 3 && (repeats(g) || collinear(soup.vertices, g))) continue;  // that one first
+      if (g.size() == 3 && (repeats_a_vertex(g) || collinear(soup.vertices, g))) continue;  // that one first
       // Rotate the neighbour to start with y -> x.
       const auto at = std::find(g.begin(), g.end(), y);
       std::rotate(g.begin(), at, g.end());
