@@ -99,7 +99,7 @@ int run_mesh(MeshArgs& args) {
     args.options.encroaching = MeshOptions::Encroaching::Steiner;
   args.options.project_to_boundary = cad_projector(args.input, args.input_options);  // curved CAD faces and edges
   if (!check_mesh_input(plc, args.input, args.options, args.verbose)) return kExitBadInput;  // as `info` validates
-  if (!check_size_estimate(plc, args.input, args.options, args.limits)) return kExitResource;  // mesh_limits.h
+  if (!check_size_estimate(plc, args.input, args.options, args.limits, args.verbose)) return kExitResource;  // mesh_limits.h
   args.options.cancel = make_cancel(args.limits);
   std::optional<CadFitReport> corner_fit;
   if (has_cad_faces(args.input))

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <iostream>
 
+#include "qualmesh/size_estimate.h"
+
 namespace qualmesh::cli {
 
 namespace {
@@ -53,11 +55,11 @@ double memory_budget_mb(const MeshLimits& limits) {
   return limits.max_memory_mb > 0 ? limits.max_memory_mb : default_memory_budget_mb();
 }
 
-bool check_size_estimate(const Plc& plc, const std::string& file, const MeshOptions& options, const MeshLimits& limits) {
+bool check_size_estimate(const Plc& plc, const std::string& file, const MeshOptions& options, const MeshLimits& limits,
+                         bool verbose) {
   const BoundingBox box = bounding_box(plc);
   if (box.empty()) return true;
   const double volume = (box.max[0] - box.min[0]) * (box.max[1] - box.min[1]) * (box.max[2] - box.min[2]);
-  if (!(volume > 0)) return true;
   double tets = 0;
   double l = options.max_edge_length > 0 ? options.max_edge_length : 0;
   if (options.target_edge_length > 0) {  // Rule 3's longest edge under a target (mesher.h), for the estimate
@@ -67,11 +69,23 @@ bool check_size_estimate(const Plc& plc, const std::string& file, const MeshOpti
   if (l > 0) tets = std::max(tets, kTetsPerEdgeCube * (volume / l) / (l * l));
   // (Regional volume limits apply to their region only: not counted, so that a small region does not refuse all.)
   if (options.max_volume > 0) tets = std::max(tets, kTetsPerMaxVolume * volume / options.max_volume);
-  if (!(tets > 0)) return true;  // no size field: the local feature size decides (not estimated)
+  // The local feature size's share (size_estimate.h): what Rules 1 and 2 make at the boundary whatever the size
+  // field; a slab 1e-4 thick asks for about 1e8 tets there with no size given.
+  const FeatureSizeEstimate feature = estimate_from_feature_size(plc);
+  if (verbose)
+    std::cerr << "estimate: size field " << number(tets) << " tets; local feature size " << number(feature.tets)
+              << " tets (integral dA/f^2 " << number(feature.surface_integral) << ", " << feature.samples
+              << " samples)\n";
+  const bool from_feature = feature.tets > tets;
+  tets = std::max(tets, feature.tets);
+  if (!(tets > 0)) return true;
   const double needed_mb = tets * kBytesPerTet / (1024.0 * 1024.0);
   const double budget = memory_budget_mb(limits);
   if (needed_mb > budget) {
-    std::cerr << "qualmesh: " << file << ": error[resource]: the size field asks for about " << number(tets)
+    std::cerr << "qualmesh: " << file << ": error[resource]: "
+              << (from_feature ? "the input's local feature size (its thinnest parts) asks for at least about "
+                               : "the size field asks for about ")
+              << number(tets)
               << " tets (about " << number(tets / kTetsPerVertex) << " vertices), about "
               << number(needed_mb / 1024.0) << " GB needed, over the memory budget of " << number(budget / 1024.0)
               << " GB (--max-memory, default 80% of the RAM): nothing meshed, nothing written\n";

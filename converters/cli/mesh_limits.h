@@ -37,11 +37,13 @@ void add_limit_options(CLI::App& command, MeshLimits& limits);
 double default_memory_budget_mb();
 double memory_budget_mb(const MeshLimits& limits);
 
-// Before meshing: the element count the size field (--max-edge, --max-volume) asks for over
-// the input's bounding box, and the memory it needs (about 250 bytes per tetrahedron, measured on the unit cube).
+// Before meshing: the element count the size field (--max-edge, --max-volume) asks for over the input's bounding
+// box, or the local feature size at the boundary (estimate_from_feature_size: thin parts), whichever is more, and
+// the memory it needs (about 250 bytes per tetrahedron, measured on the unit cube).
 // False, with "about 8e+12 tets, about 2e+06 GB needed, over the budget of ..." on stderr, when it exceeds the
 // memory budget; also false when it exceeds --max-vertices by far (the run could not end otherwise than by it).
-bool check_size_estimate(const Plc& plc, const std::string& file, const MeshOptions& options, const MeshLimits& limits);
+bool check_size_estimate(const Plc& plc, const std::string& file, const MeshOptions& options, const MeshLimits& limits,
+                         bool verbose = false);
 
 // The cancel callback for MeshOptions::cancel: true once the time limit has passed or the resident set exceeds the
 // budget (and records which in limits.stopped_by).

@@ -1,6 +1,8 @@
 // Local feature size (Cheng & Dey, Section 2): best-first search over a bounding-volume tree. See the header.
 #include "local_feature_size.h"
 
+#include "facet_triangulation.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -202,6 +204,18 @@ double LocalFeatureSize::brute_force(const Point3& x) const {
     }
   }
   return std::sqrt(best);
+}
+
+std::vector<std::vector<std::array<Index, 3>>> plc_facet_triangles(const Plc& plc) {
+  std::vector<std::vector<std::array<Index, 3>>> out(plc.facets.size());
+  for (std::size_t f = 0; f < plc.facets.size(); ++f) {
+    const auto frame = detail::compute_facet_frame(plc.vertices, plc.facets[f]);
+    if (!frame) continue;
+    const detail::FacetTriangulation ft = detail::triangulate_facet(plc.vertices, plc.facets[f], *frame);
+    for (const auto& t : ft.triangles)
+      if (ft.is_plc_vertex(t[0]) && ft.is_plc_vertex(t[1]) && ft.is_plc_vertex(t[2])) out[f].push_back(t);
+  }
+  return out;
 }
 
 }  // namespace qualmesh

@@ -20,6 +20,10 @@
 
 namespace qualmesh {
 
+// The PLC's facets as triangles of PLC vertex ids (a constrained Delaunay triangulation of each facet; a facet that
+// spans no plane gets none), as LocalFeatureSize's constructor takes them.
+std::vector<std::vector<std::array<Index, 3>>> plc_facet_triangles(const Plc& plc);
+
 class LocalFeatureSize {
  public:
   // `facet_triangles[i]` triangulates facet i of `plc` with PLC vertex ids (any triangulation of the facet's region

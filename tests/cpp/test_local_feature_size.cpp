@@ -6,6 +6,7 @@
 #include <random>
 
 #include "local_feature_size.h"
+#include "qualmesh/size_estimate.h"
 
 namespace qualmesh {
 namespace {
@@ -112,6 +113,37 @@ TEST(LocalFeatureSize, TreeAgreesWithBruteForceOnBoxes) {
 
 TEST(LocalFeatureSize, TreeAgreesWithBruteForceOnTriangulatedSurface) {
   expect_tree_equals_brute_force(icosahedron(), 1000, 4);
+}
+
+// The size estimate (size_estimate.h) integrates dA / f^2 over the facets. On a slab 1 x 1 x t, f = t on the top and
+// bottom faces (the pair top/bottom), so the integral is 2 / t^2 plus the sides' small share (area 4t, f >= t/2
+// there: at most 16 / t): exact to the sampling, since f is constant over the big faces.
+TEST(SizeEstimate, ThinSlabIntegralIsTwoOverThicknessSquared) {
+  for (const double t : {1e-2, 1e-4}) {
+    Plc slab;
+    add_box(slab, {0, 0, 0}, {1, 1, t});
+    const FeatureSizeEstimate e = estimate_from_feature_size(slab);
+    EXPECT_GE(e.surface_integral, 2 / (t * t)) << t;
+    EXPECT_LE(e.surface_integral, 2 / (t * t) + 16 / t) << t;
+    EXPECT_DOUBLE_EQ(e.tets, 0.5 * e.surface_integral);  // the calibrated lower bound: 0.5 tets per unit
+    EXPECT_LE(e.samples, 8192u + 12u);                   // the default budget (one more piece per triangle at most)
+    const FeatureSizeEstimate again = estimate_from_feature_size(slab);
+    EXPECT_EQ(again.surface_integral, e.surface_integral);  // deterministic
+  }
+}
+
+// More facet triangles than samples: every k-th triangle is sampled at its centroid and the integral scaled by
+// area. The unit cube's 12 triangles with a budget of 4 (every 3rd triangle) against a fine sampling of all 12: the
+// cube's symmetry makes the coarse one close (f is 1 over most of each face, the opposite face).
+TEST(SizeEstimate, StrideSamplingOfManyTrianglesScalesByArea) {
+  Plc cube;
+  add_box(cube, {0, 0, 0}, {1, 1, 1});
+  const FeatureSizeEstimate fine = estimate_from_feature_size(cube);
+  EXPECT_GT(fine.samples, 8000u);
+  const FeatureSizeEstimate strided = estimate_from_feature_size(cube, 4);
+  EXPECT_EQ(strided.samples, 4u);
+  EXPECT_NEAR(strided.surface_integral, fine.surface_integral, 0.5 * fine.surface_integral)
+      << strided.surface_integral << " against " << fine.surface_integral;
 }
 
 }  // namespace

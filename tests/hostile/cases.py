@@ -250,6 +250,11 @@ case("limit-max-edge-1e-4-refused-at-once", ["mesh", "{in}/cube.off", "-o", "{ou
      RESOURCE + r"the size field asks for about 3\.3e\+13 tets \(about 5\.5e\+12 vertices\), about 7\.7e\+06 GB needed, "
      r"over the memory budget of [0-9.e+]+ GB \(--max-memory, default 80% of the RAM\): nothing meshed, nothing written",
      timeout=5)
+# (--max-memory given, so that the case does not depend on the machine's RAM: the default, 80% of 24 GB, refuses too.)
+case("limit-thin-slab-refused-by-feature-size", ["mesh", "{in}/slab_1e-4.off", "-o", "{out}", "--max-memory", "16000"], 4,
+     RESOURCE + r"the input's local feature size \(its thinnest parts\) asks for at least about 1e\+08 tets \(about "
+     r"1\.7e\+07 vertices\), about 2[0-9] GB needed, over the memory budget of 16 GB \(--max-memory, default 80% "
+     r"of the RAM\): nothing meshed, nothing written", timeout=5)
 case("limit-max-volume-refused", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-volume", "1e-12"], 4,
      RESOURCE + r"the size field asks for about 2e\+12 tets", timeout=5)
 case("limit-max-memory-estimate", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-edge", "0.01", "--max-memory", "1000"],

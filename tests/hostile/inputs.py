@@ -220,6 +220,9 @@ for _name, _k in [("1e308", 1e308), ("1e100", 1e100), ("minus_1e80", -1e80), ("1
                   ("1e-100", 1e-100), ("1e60", 1e60), ("1e-60", 1e-60)]:
     INPUTS[f"cube_scaled_{_name}.off"] = off([(x * _k, y * _k, z * _k) for x, y, z in CUBE], CUBE_QUADS)
 # far out but small: 1e75 away, 1 wide
+# A slab 1e-4 thick (issue 18 item 3): its local feature size asks for about 1e8 tets; refused before any work.
+INPUTS["slab_1e-4.off"] = off([(x, y, z) for z in (0.0, 1e-4) for y in (0.0, 1.0) for x in (0.0, 1.0)],
+                              [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (1, 3, 7, 5), (3, 2, 6, 7), (2, 0, 4, 6)])
 INPUTS["cube_offset_1e75.off"] = off(moved(CUBE, (1e75, 0, 0)), CUBE_QUADS)
 INPUTS["empty.scad"] = ""
 INPUTS["blank.scad"] = "  \n\t\n"

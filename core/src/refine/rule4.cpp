@@ -35,19 +35,6 @@ struct CellHash {
 
 double sq_dist(const KPoint3& a, const KPoint3& b) { return CGAL::squared_distance(a, b); }
 
-// The input PLC's triangles per facet (PLC vertex ids) for the local feature size's distance queries.
-std::vector<std::vector<std::array<Index, 3>>> facet_triangles(const Plc& plc) {
-  std::vector<std::vector<std::array<Index, 3>>> out(plc.facets.size());
-  for (std::size_t f = 0; f < plc.facets.size(); ++f) {
-    const auto frame = compute_facet_frame(plc.vertices, plc.facets[f]);
-    if (!frame) continue;
-    const FacetTriangulation ft = triangulate_facet(plc.vertices, plc.facets[f], *frame);
-    for (const auto& t : ft.triangles)
-      if (ft.is_plc_vertex(t[0]) && ft.is_plc_vertex(t[1]) && ft.is_plc_vertex(t[2])) out[f].push_back(t);
-  }
-  return out;
-}
-
 // Does v's host element meet `element` at an acute input angle (then Rule 4 leaves the pair alone)?
 bool meets_acute(const MeshState& s, Index v, InputComplex::ElementRef element) {
   bool has = false;
@@ -168,7 +155,7 @@ void sliver_vertices(const MeshState& s, const std::vector<Ch3>& cells, std::vec
 }  // namespace
 
 double local_feature_size_at(MeshState& s, Index v) {
-  if (!s.lfs) s.lfs = std::make_unique<LocalFeatureSize>(*s.plc, facet_triangles(*s.plc));
+  if (!s.lfs) s.lfs = std::make_unique<LocalFeatureSize>(*s.plc, plc_facet_triangles(*s.plc));
   if (s.lfs_at.size() < s.vertices.size()) s.lfs_at.resize(s.vertices.size(), -1.0);
   if (s.lfs_at[v] < 0) s.lfs_at[v] = (*s.lfs)(s.point(v));
   return s.lfs_at[v];
