@@ -19,6 +19,7 @@ constexpr double kBytesPerTet = 250;    // peak resident set / tetrahedra: 480 M
 constexpr double kTetsPerEdgeCube = 33;  // tetrahedra per L^3 of volume: 2.1e6 for L = 0.025 on the unit cube
 constexpr double kTetsPerMaxVolume = 2;  // tetrahedra per max-volume of volume (refinement stays below the cap)
 constexpr double kTetsPerVertex = 6;
+constexpr double kWarnTets = 1e7;  // about 2.3 GB and, at the engine's speed today, tens of minutes
 
 std::string number(double x) {
   char buffer[32];
@@ -91,6 +92,12 @@ bool check_size_estimate(const Plc& plc, const std::string& file, const MeshOpti
               << " GB (--max-memory, default 80% of the RAM): nothing meshed, nothing written\n";
     return false;
   }
+  if (tets >= kWarnTets)  // within the budget, but minutes of work and gigabytes: said before it starts
+    std::cerr << "qualmesh: " << file << ": warning: "
+              << (from_feature ? "the input's local feature size (its thinnest parts) asks for at least about "
+                               : "the size field asks for about ")
+              << number(tets) << " tets, about " << number(needed_mb / 1024.0)
+              << " GB: this takes a while (--time-limit and --max-memory bound it)\n";
   return true;
 }
 

@@ -255,6 +255,10 @@ case("limit-thin-slab-refused-by-feature-size", ["mesh", "{in}/slab_1e-4.off", "
      RESOURCE + r"the input's local feature size \(its thinnest parts\) asks for at least about 1e\+08 tets \(about "
      r"1\.7e\+07 vertices\), about 2[0-9] GB needed, over the memory budget of 16 GB \(--max-memory, default 80% "
      r"of the RAM\): nothing meshed, nothing written", timeout=5)
+case("limit-nested-cubes-warned-then-stopped", ["mesh", "{in}/nested_100_cubes.off", "-o", "{out}", "--time-limit", "1"],
+     4, r"warning: the input's local feature size \(its thinnest parts\) asks for at least about [0-9.]+e\+07 tets, about "
+     r"[0-9.]+ GB: this takes a while \(--time-limit and --max-memory bound it\)\n.*" + RESOURCE +
+     r"the time limit \(--time-limit 1 s\) stopped meshing", timeout=15)
 case("limit-max-volume-refused", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-volume", "1e-12"], 4,
      RESOURCE + r"the size field asks for about 2e\+12 tets", timeout=5)
 case("limit-max-memory-estimate", ["mesh", "{in}/cube.off", "-o", "{out}", "--max-edge", "0.01", "--max-memory", "1000"],

@@ -223,6 +223,12 @@ for _name, _k in [("1e308", 1e308), ("1e100", 1e100), ("minus_1e80", -1e80), ("1
 # A slab 1e-4 thick (issue 18 item 3): its local feature size asks for about 1e8 tets; refused before any work.
 INPUTS["slab_1e-4.off"] = off([(x, y, z) for z in (0.0, 1e-4) for y in (0.0, 1.0) for x in (0.0, 1.0)],
                               [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (1, 3, 7, 5), (3, 2, 6, 7), (2, 0, 4, 6)])
+# 100 nested cube shells 0.0025 apart (issue 18 item 3): within the memory budget, but tens of millions of tets.
+INPUTS["nested_100_cubes.off"] = off([(sx * (0.5 - 0.0025 * k), sy * (0.5 - 0.0025 * k), sz * (0.5 - 0.0025 * k))
+                                      for k in range(100) for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)],
+                                     [tuple(8 * k + i for i in q) for k in range(100)
+                                      for q in ((0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (1, 3, 7, 5), (3, 2, 6, 7),
+                                                (2, 0, 4, 6))])
 INPUTS["cube_offset_1e75.off"] = off(moved(CUBE, (1e75, 0, 0)), CUBE_QUADS)
 INPUTS["empty.scad"] = ""
 INPUTS["blank.scad"] = "  \n\t\n"
