@@ -6,6 +6,8 @@
 // corners only; vertex and line cells are skipped; other cells are refused. Not a general XML parser: it finds the <Points>, <Cells> and <CellData>
 // blocks and their DataArrays.
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include "mesh_groups.h"
@@ -13,6 +15,13 @@
 
 namespace qualmesh::io {
 namespace {
+
+// A value for a message: %g, so that 3.1e+78 or nan reads as such.
+std::string shown(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
 
 struct DataArray {
   std::string parent;  // "Points", "Cells", "CellData", "PointData", ...
@@ -64,28 +73,39 @@ class VtuReader {
     std::size_t begin = 0;
     bool quadratic = true, faces_quadratic = true;
     for (std::size_t cell = 0; cell < num_cells; ++cell) {
-      const std::size_t end = static_cast<std::size_t>(offsets->values[cell]);
-      if (end < begin || end > connectivity->values.size()) fail(ErrorCode::Parse, "bad offsets", offsets->line);
+      // Every value of an integer array is checked before it is converted: a cast of a value the target type cannot
+      // hold (an offset of 3e78, NaN) is undefined behaviour (found by fuzzing).
+      const double offset = offsets->values[cell];
+      if (!(offset >= double(begin) && offset <= double(connectivity->values.size())) || offset != std::floor(offset))
+        fail(ErrorCode::Parse, "bad offsets: cell " + std::to_string(cell) + " ends at " + shown(offset) +
+                                   ", outside " + std::to_string(begin) + ".." +
+                                   std::to_string(connectivity->values.size()) + " or not a whole number",
+             offsets->line);
+      const auto end = static_cast<std::size_t>(offset);
       std::vector<Index> nodes;
       for (std::size_t k = begin; k < end; ++k) {
         const double v = connectivity->values[k];
-        if (v < 0 || v >= static_cast<double>(num_points)) {
+        if (!(v >= 0 && v < static_cast<double>(num_points)) || v != std::floor(v)) {  // NaN too
           fail(ErrorCode::IndexOutOfRange, "cell " + std::to_string(cell) + " refers to a missing point",
                connectivity->line);
         }
         nodes.push_back(static_cast<Index>(v));
       }
       begin = end;
-      const int type = static_cast<int>(types->values[cell]);
+      const double type_value = types->values[cell];
+      if (!(type_value >= 0 && type_value <= 255) || type_value != std::floor(type_value))
+        fail(ErrorCode::Parse, "cell " + std::to_string(cell) + " has no VTK cell type (" + shown(type_value) +
+                                   "; types are whole numbers 0..255)", types->line);
+      const int type = static_cast<int>(type_value);
       if ((type == 10 && nodes.size() == 4) || (type == 24 && nodes.size() == 10)) {
         mesh.tets.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
-        mesh.tet_region.push_back(region ? static_cast<int>(region->values[cell]) : 0);
+        mesh.tet_region.push_back(region ? int_label(region, cell, "region") : 0);
         quadratic = quadratic && type == 24;
         if (quadratic) mesh.tet_mid.push_back({nodes[4], nodes[5], nodes[6], nodes[7], nodes[8], nodes[9]});
       } else if ((type == 5 && nodes.size() == 3) || (type == 22 && nodes.size() == 6)) {
         mesh.faces.push_back({nodes[0], nodes[1], nodes[2]});
         mesh.face_facet.push_back(-1);
-        mesh.face_marker.push_back(face_id ? static_cast<int>(face_id->values[cell]) : 0);
+        mesh.face_marker.push_back(face_id ? int_label(face_id, cell, "face_id") : 0);
         faces_quadratic = faces_quadratic && type == 22;
         if (faces_quadratic) mesh.face_mid.push_back({nodes[3], nodes[4], nodes[5]});
       } else if (type == 1 || type == 2 || type == 3 || type == 4 || type == 21) {
@@ -115,6 +135,15 @@ class VtuReader {
   long line_at(std::size_t pos) const {
     return 1 + static_cast<long>(std::count(text_.begin(), text_.begin() + std::min(pos, text_.size()), '\n'));
   }
+  // A cell's region or face label: a whole number an int holds (its array's line in the message otherwise).
+  int int_label(const DataArray* array, std::size_t cell, const char* name) const {
+    const double v = array->values[cell];
+    if (!(v >= -2e9 && v <= 2e9) || v != std::floor(v))
+      fail(ErrorCode::Parse, std::string("the '") + name + "' of cell " + std::to_string(cell) + " (" +
+                                 shown(v) + ") is not a whole number in -2e9..2e9", array->line);
+    return static_cast<int>(v);
+  }
+
   [[noreturn]] void fail(ErrorCode code, const std::string& message, long line) const {
     throw InputError(code, message, path_, line);
   }

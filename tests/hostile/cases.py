@@ -429,5 +429,8 @@ case("ok-sewing-tolerance-cad", ["info", "{shared}/data/cad/part.step", "--sewin
 case("fuzz-tetgen-region-attribute-beyond-int", ["check", "{in}/fuzz_region_attribute.node"], 2,
      r"fuzz_region_attribute\.ele:\d+: error\[parse\]: the region attribute of tetrahedron \d+ \([0-9.e+]+\) is "
      r"outside -2e9\.\.2e9")
+case("fuzz-vtu-offset-beyond-size-t", ["check", "{in}/fuzz_offset_beyond_size_t.vtu"], 2,
+     r"fuzz_offset_beyond_size_t\.vtu:\d+: error\[parse\]: bad offsets: cell 7 ends at 3\.1e\+78, outside 27\.\.60 or not "
+     r"a whole number")
 case("fuzz-medit-vertex-count-beyond-file", ["check", "{in}/fuzz_vertex_count.mesh"], 2,
      r"fuzz_vertex_count\.mesh:\d+: error\[parse\]: absurd the number of vertices: 999999999, but only \d+ bytes")

@@ -267,6 +267,7 @@ for _ext, _part in zip([".node", ".ele", ".face"], _parts):
     INPUTS["fuzz_region_attribute" + _ext] = _part + (b"\n" if _ext != [".node", ".ele", ".face"][len(_parts) - 1] else b"")
 
 # a Medit mesh announcing 999999999 vertices in a few bytes: 24 GB were allocated for them
+INPUTS["fuzz_offset_beyond_size_t.vtu"] = (_FUZZ / "vtu" / "offset-beyond-size_t").read_bytes()
 INPUTS["fuzz_vertex_count.mesh"] = (_FUZZ / "mesh_medit" / "vertex-count-beyond-file").read_bytes()
 
 
