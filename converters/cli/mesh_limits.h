@@ -41,7 +41,8 @@ double memory_budget_mb(const MeshLimits& limits);
 // box, or the local feature size at the boundary (estimate_from_feature_size: thin parts), whichever is more, and
 // the memory it needs (about 250 bytes per tetrahedron, measured on the unit cube).
 // False, with "about 8e+12 tets, about 2e+06 GB needed, over the budget of ..." on stderr, when it exceeds the
-// memory budget; also false when it exceeds --max-vertices by far (the run could not end otherwise than by it).
+// memory budget. An estimate of 1e7 tets or more within the budget is said on stderr as a warning (minutes of work).
+// `verbose`: both estimates on stderr ("estimate: size field ... tets; local feature size ... tets").
 bool check_size_estimate(const Plc& plc, const std::string& file, const MeshOptions& options, const MeshLimits& limits,
                          bool verbose = false);
 

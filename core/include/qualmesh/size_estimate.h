@@ -1,6 +1,6 @@
 // How big a mesh the input asks for, before any refinement (issue 18 item 3: "an estimate of the element count from
 // the size field and the local feature size before refinement starts"). The CLI refuses a run whose estimate is over
-// the memory budget (mesh_limits.cpp) instead of letting it grow until it is killed: a slab 1e-4 thick, a needle.
+// the memory budget (mesh_limits.cpp) instead of letting it grow until it is killed (a slab 1e-4 thick).
 #pragma once
 
 #include <cstddef>
