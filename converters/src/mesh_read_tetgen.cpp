@@ -13,8 +13,10 @@ namespace {
 
 Index read_vertex_index(Tokenizer& tokens, long long first_index, std::size_t num_points) {
   const long long raw = tokens.next_integer("a vertex index");
-  const long long index = raw - first_index;
-  if (index < 0 || static_cast<std::size_t>(index) >= num_points) {
+  // raw - first_index may overflow (raw = -2^63 from the file: undefined behaviour, found by fuzzing): checked.
+  long long index = 0;
+  if (__builtin_sub_overflow(raw, first_index, &index) || index < 0 ||
+      static_cast<std::size_t>(index) >= num_points) {
     ElementIds ids;
     tokens.fail(ErrorCode::IndexOutOfRange, "vertex index " + std::to_string(raw) + " out of range", ids);
   }

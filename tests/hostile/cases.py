@@ -429,6 +429,8 @@ case("ok-sewing-tolerance-cad", ["info", "{shared}/data/cad/part.step", "--sewin
 case("fuzz-tetgen-region-attribute-beyond-int", ["check", "{in}/fuzz_region_attribute.node"], 2,
      r"fuzz_region_attribute\.ele:\d+: error\[parse\]: the region attribute of tetrahedron \d+ \([0-9.e+]+\) is "
      r"outside -2e9\.\.2e9")
+case("fuzz-tetgen-vertex-index-overflow", ["check", "{in}/fuzz_vertex_index.node"], 2,
+     r"fuzz_vertex_index\.ele:2: error\[index-out-of-range\]: vertex index -9223372036854775808 out of range")
 case("fuzz-vtu-offset-beyond-size-t", ["check", "{in}/fuzz_offset_beyond_size_t.vtu"], 2,
      r"fuzz_offset_beyond_size_t\.vtu:\d+: error\[parse\]: bad offsets: cell 7 ends at 3\.1e\+78, outside 27\.\.60 or not "
      r"a whole number")

@@ -266,8 +266,13 @@ _parts = (_FUZZ / "mesh_tetgen" / "region-attribute-beyond-int").read_bytes().sp
 for _ext, _part in zip([".node", ".ele", ".face"], _parts):
     INPUTS["fuzz_region_attribute" + _ext] = _part + (b"\n" if _ext != [".node", ".ele", ".face"][len(_parts) - 1] else b"")
 
-# a Medit mesh announcing 999999999 vertices in a few bytes: 24 GB were allocated for them
+# a TetGen .ele vertex index of -1.1e19: raw - first index overflowed long long (undefined behaviour)
+_parts = (_FUZZ / "mesh_tetgen" / "vertex-index-overflow").read_bytes().split(b"\n@@\n", 2)
+for _ext, _part in zip([".node", ".ele", ".face"], _parts):
+    INPUTS["fuzz_vertex_index" + _ext] = _part + (b"\n" if _ext != [".node", ".ele", ".face"][len(_parts) - 1] else b"")
+# a VTU offset of 3.1e78 was converted to size_t (undefined behaviour)
 INPUTS["fuzz_offset_beyond_size_t.vtu"] = (_FUZZ / "vtu" / "offset-beyond-size_t").read_bytes()
+# a Medit mesh announcing 999999999 vertices in a few bytes: 24 GB were allocated for them
 INPUTS["fuzz_vertex_count.mesh"] = (_FUZZ / "mesh_medit" / "vertex-count-beyond-file").read_bytes()
 
 
