@@ -77,26 +77,21 @@ bool check_size_estimate(const Plc& plc, const std::string& file, const MeshOpti
     std::cerr << "estimate: size field " << number(tets) << " tets; local feature size " << number(feature.tets)
               << " tets (integral dA/f^2 " << number(feature.surface_integral) << ", " << feature.samples
               << " samples)\n";
-  const bool from_feature = feature.tets > tets;
+  const char* what = feature.tets > tets ? "the input's local feature size (its thinnest parts) asks for at least about "
+                                         : "the size field asks for about ";
   tets = std::max(tets, feature.tets);
   if (!(tets > 0)) return true;
   const double needed_mb = tets * kBytesPerTet / (1024.0 * 1024.0);
   const double budget = memory_budget_mb(limits);
   if (needed_mb > budget) {
-    std::cerr << "qualmesh: " << file << ": error[resource]: "
-              << (from_feature ? "the input's local feature size (its thinnest parts) asks for at least about "
-                               : "the size field asks for about ")
-              << number(tets)
+    std::cerr << "qualmesh: " << file << ": error[resource]: " << what << number(tets)
               << " tets (about " << number(tets / kTetsPerVertex) << " vertices), about "
               << number(needed_mb / 1024.0) << " GB needed, over the memory budget of " << number(budget / 1024.0)
               << " GB (--max-memory, default 80% of the RAM): nothing meshed, nothing written\n";
     return false;
   }
   if (tets >= kWarnTets)  // within the budget, but minutes of work and gigabytes: said before it starts
-    std::cerr << "qualmesh: " << file << ": warning: "
-              << (from_feature ? "the input's local feature size (its thinnest parts) asks for at least about "
-                               : "the size field asks for about ")
-              << number(tets) << " tets, about " << number(needed_mb / 1024.0)
+    std::cerr << "qualmesh: " << file << ": warning: " << what << number(tets) << " tets, about " << number(needed_mb / 1024.0)
               << " GB: this takes a while (--time-limit and --max-memory bound it)\n";
   return true;
 }

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -84,6 +85,11 @@ using RegularTriangulation3 = CGAL::Regular_triangulation_3<Kernel, Tds3>;
 using Vh3 = RegularTriangulation3::Vertex_handle;
 using Ch3 = RegularTriangulation3::Cell_handle;
 using Facet3 = RegularTriangulation3::Facet;
+
+// Hash of a cell handle by address, for unordered sets of cells (conflict zones, stars).
+struct CellHash {
+  std::size_t operator()(const Ch3& c) const { return std::hash<const void*>()(&*c); }
+};
 
 // In/out of a facet triangle (plc.h rule): covered by an odd number of the facet's polygons (parity), and not
 // reached from a facet hole point without crossing a polygon edge (hole).

@@ -44,9 +44,19 @@ def run_timed(exe, *args, bound=TIME_BOUND_S):
     return result, time.monotonic() - start
 
 
+def write_input(tmp_path, built):
+    """Writes a degenerate_inputs builder's file into tmp_path; returns its path and an empty output folder's mesh."""
+    name, text, _ = built
+    source = tmp_path / name
+    source.write_text(text)
+    out = tmp_path / "out" / "mesh.vtu"
+    out.parent.mkdir()
+    return source, out
+
+
 def tet_volumes(np, mesh):
     points = mesh.points
-    total, per_cell = 0.0, []
+    per_cell = []
     for block in mesh.cells:
         if block.type != "tetra":
             continue
@@ -77,7 +87,7 @@ def test_meshes_cleanly_within_the_time_bound(qualmesh_exe, tmp_path, name, text
     assert abs(vol.sum() - volume) <= 1e-9 * volume, (vol.sum(), volume)
     if name.startswith("row_of_"):
         region = np.concatenate([r for r, block in zip(mesh.cell_data["region"], mesh.cells) if block.type == "tetra"])
-        labels, counts = np.unique(region, return_counts=True)
+        labels = np.unique(region)
         assert list(labels) == list(range(1, 101)), labels
         for label in labels:  # every region is its own unit cube
             assert abs(vol[region == label].sum() - 1.0) <= 1e-12, label
@@ -99,11 +109,7 @@ def test_schonhardt_prism_needs_steiner_points(qualmesh_exe, tmp_path):
 
 
 def test_thin_slab_is_refused_with_an_estimate_before_any_work(qualmesh_exe, tmp_path):
-    name, text, _ = geo.slab(1e-4)
-    source = tmp_path / name
-    source.write_text(text)
-    out = tmp_path / "out" / "mesh.vtu"
-    out.parent.mkdir()
+    source, out = write_input(tmp_path, geo.slab(1e-4))
     # --max-memory as on this project's machines (24 GB, the default budget 80% of it): independent of the RAM.
     result, seconds = run_timed(qualmesh_exe, "mesh", source, "-o", out, "--max-memory", "19000", bound=10)
     assert result.returncode == 4, result.stdout + result.stderr
@@ -115,11 +121,7 @@ def test_thin_slab_is_refused_with_an_estimate_before_any_work(qualmesh_exe, tmp
 
 def test_thin_slab_under_a_vertex_limit_stops_at_the_limit(qualmesh_exe, tmp_path):
     """With a memory budget that lets it start, the vertex limit stops the run (exit 4), and nothing is written."""
-    name, text, _ = geo.slab(1e-4)
-    source = tmp_path / name
-    source.write_text(text)
-    out = tmp_path / "out" / "mesh.vtu"
-    out.parent.mkdir()
+    source, out = write_input(tmp_path, geo.slab(1e-4))
     result, _ = run_timed(qualmesh_exe, "mesh", source, "-o", out, "--max-memory", "1000000", "--max-vertices",
                           "20000", bound=120)
     assert result.returncode == 4, result.stdout + result.stderr

@@ -67,10 +67,6 @@ const Kernel& kernel() {
   return k;
 }
 
-struct CellHash {
-  std::size_t operator()(const Ch3& c) const { return std::hash<const void*>()(&*c); }
-};
-
 using Key3 = std::array<Index, 3>;
 using Key2 = std::array<Index, 2>;
 

@@ -29,10 +29,6 @@ namespace qualmesh::detail {
 
 namespace {
 
-struct CellHash {
-  std::size_t operator()(const Ch3& c) const { return std::hash<const void*>()(&*c); }
-};
-
 double sq_dist(const KPoint3& a, const KPoint3& b) { return CGAL::squared_distance(a, b); }
 
 // Does v's host element meet `element` at an acute input angle (then Rule 4 leaves the pair alone)?

@@ -55,10 +55,6 @@ const Kernel& kernel() {
   return k;
 }
 
-struct CellHandleHash {
-  std::size_t operator()(const Ch3& c) const { return std::hash<const void*>()(&*c); }
-};
-
 struct KeyHash {
   std::size_t operator()(const std::array<Index, 2>& k) const { return std::hash<Index>()(k[0]) * 1000003u ^ k[1]; }
 };
@@ -125,7 +121,7 @@ constexpr const char* kRefusalNames[] = {"not-in-conflict", "region",    "subfac
 // find_conflicts here). Same answer as the Region test over find_conflicts' cells, so the same mesh.
 bool zone_leaves_region(const MeshState& s, Ch3 start, const KWeightedPoint3& wp, int region) {
   std::vector<Ch3> stack{start};
-  std::unordered_set<Ch3, CellHandleHash> seen{start};
+  std::unordered_set<Ch3, CellHash> seen{start};
   while (!stack.empty()) {
     const Ch3 c = stack.back();
     stack.pop_back();
