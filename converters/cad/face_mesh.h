@@ -1,8 +1,9 @@
 // Sized surface mesh of the CAD faces (second stage of the sized CAD front end, after size_field.h): each CAD edge
-// is discretised once, uniformly in arc length at its size, and shared by the faces that use it; a curved face is
-// meshed by Delaunay refinement in its parameter plane (u, v) under 3D criteria, so that every node lies on the CAD
-// surface and the triangles are well shaped in space. brep_to_plc.cpp assembles the PLC from these pieces (planar
-// faces stay exact polygons there). Private to converters/cad; no CGAL type here.
+// is discretised once, uniformly in arc length at its size, and shared by the faces that use it; a face is meshed
+// by Delaunay refinement in its parameter plane (u, v) under 3D criteria, so that every node lies on the CAD surface
+// and the triangles are well shaped in space. brep_to_plc.cpp assembles the PLC from these pieces (a planar face
+// stays its exact polygons there, with its mesh's interior nodes in it). Private to converters/cad; no CGAL type
+// here.
 #pragma once
 
 #include <TopoDS_Edge.hxx>

@@ -8,7 +8,7 @@ qualmesh="${QUALMESH:-$(command -v qualmesh || echo "$here/../../build/converter
 work="${WORK:-$(mktemp -d)}"
 cp "$here/beam.step" "$here/cantilever.inp" "$work/"
 cd "$work"
-"$qualmesh" mesh beam.step --order 2 --size 5 -o beam.inp
+"$qualmesh" mesh beam.step --order 2 --size 8 -o beam.inp
 "${CCX:-ccx}" -i cantilever > ccx.log
 # The .dat file lists the displacement (ux, uy, uz) of every node of Face2 after its header: print their mean uy.
 awk '/displacements/ {found = 1; next} found && NF == 4 {sum += $3; n++}

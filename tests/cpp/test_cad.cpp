@@ -81,7 +81,7 @@ Figures measure(const CadModel& model) {
       fig.volumes[s] += (k == 0 ? v6 : -v6) / 6;
       fig.volume_bound[s] += area * summary.face_tolerances[facet.marker - 1];
       for (const auto& loop : facet.polygons)
-        for (std::size_t i = 0; i < loop.size(); ++i) {
+        for (std::size_t i = 0; loop.size() >= 3 && i < loop.size(); ++i) {  // not a facet's isolated vertex
           Index a = loop[i], b = loop[(i + 1) % loop.size()];
           ++uses[s][{std::min(a, b), std::max(a, b)}];
         }
@@ -179,16 +179,35 @@ TEST(CadImport, RecognisesCadExtensions) {
   EXPECT_FALSE(is_cad_path("step"));
 }
 
+// A planar face is one facet: its exact wire polygon, plus the interior nodes of its sized mesh as isolated vertices
+// in its plane. At a size longer than every edge of the 10 mm box, its edges stay single segments and each face is
+// meshed at its edges' spacing (10): one node at its centre.
 TEST(CadImport, PlanarBoxIsSixExactFacets) {
   const std::string path = shared_path("data/cad/box_static.FCStd");
   QM_REQUIRE_FILE(path);
   CadOptions options;
-  options.size = 100;  // longer than every edge of the 10 mm box: its edges stay single segments
+  options.size = 100;
   const CadModel model = read_cad(path, options);
-  EXPECT_EQ(model.plc.vertices.size(), 8u);
+  EXPECT_EQ(model.plc.vertices.size(), 8u + 6u);
   EXPECT_EQ(model.plc.facets.size(), 6u);
   EXPECT_EQ(model.plc.segments.size(), 12u);
-  for (const Facet& f : model.plc.facets) EXPECT_EQ(f.polygons.size(), 1u);
+  for (const Facet& f : model.plc.facets) {
+    ASSERT_EQ(f.polygons.size(), 2u);
+    ASSERT_EQ(f.polygons[0].size(), 4u);  // the square, corners only
+    ASSERT_EQ(f.polygons[1].size(), 1u);  // the node inside
+    const Point3& c = model.plc.vertices[f.polygons[1][0]];
+    // The box's faces are coordinate planes: the node has the corners' coordinate across the face exactly, and lies
+    // strictly between them along the face.
+    int across = 0, inside = 0;
+    for (int k = 0; k < 3; ++k) {
+      double low = 1e300, high = -1e300;
+      for (Index v : f.polygons[0]) low = std::min(low, model.plc.vertices[v][k]), high = std::max(high, model.plc.vertices[v][k]);
+      across += low == high && c[k] == low;
+      inside += low + 1 < c[k] && c[k] < high - 1;
+    }
+    EXPECT_EQ(across, 1);
+    EXPECT_EQ(inside, 2);
+  }
 }
 
 TEST(CadImport, StackedBeamsShareOneInternalFacet) {

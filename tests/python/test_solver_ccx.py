@@ -190,30 +190,33 @@ def test_cantilever_c3d10_tip_deflection_converges_to_the_reference(run_qualmesh
     assert coarsest_within(ours) is not None, ours
 
 
-# Issue 14's node-count target is not met yet: measured in this test's own sweep (2026-12-02, --size as the target
-# edge length), Gmsh reaches 0.5 % with 634 nodes (clmax 8: 1.8975 mm) while QualMesh needs 833 (--size 5:
-# 1.8976 mm; 645 nodes at --size 7 give 1.8951, 0.57 % low; 760 at 6 give 1.8943). At equal node counts Gmsh's
-# tetrahedra are better shaped (min dihedral about 30 deg against 18). strict: the day it passes, this marker must go.
-@pytest.mark.xfail(strict=True, reason="QualMesh needs about 1.3x Gmsh's C3D10 nodes for 0.5 % on the cantilever")
+# Issue 14's node-count target: the coarsest mesh within 0.5 % of the reference, for each mesher over the same sweep
+# of size parameters (--size for QualMesh, CharacteristicLengthMax for Gmsh; node counts are not monotone in either,
+# so the sweep is dense and identical for both). Measured 2026-12-03: QualMesh 551 nodes at 9.5 (1.8965 mm), Gmsh 591
+# at 9 (1.8971 mm; its 551 nodes at 9.5 give 1.8964 mm, just outside). That is since the planar CAD faces are meshed
+# at their edges' spacing (brep_to_plc.cpp): before, their interiors were left to the volume mesher and QualMesh
+# needed 833 nodes.
+CANTILEVER_SWEEP = (12, 11, 10, 9.5, 9, 8.5, 8, 7.5, 7, 6.5, 6)
+
+
 def test_cantilever_needs_no_more_nodes_than_gmsh_for_the_same_accuracy(run_qualmesh, tmp_path):
     require_tool("ccx")
-    ours = []
-    for size in (12, 10, 8, 7, 6, 5):
+    ours, theirs = [], []
+    for size in CANTILEVER_SWEEP:
         work = tmp_path / f"qm{size}"
         work.mkdir()
         mesh, nodes = qualmesh_beam(run_qualmesh, work, size)
         ours.append((nodes, solve_cantilever(work, mesh)[0]))
-    theirs = []
-    for clmax in (12, 10, 8, 6):
-        work = tmp_path / f"gmsh{clmax}"
+        work = tmp_path / f"gmsh{size}"
         work.mkdir()
-        mesh, nodes = gmsh_beam_inp(work, clmax)
+        mesh, nodes = gmsh_beam_inp(work, size)
         theirs.append((nodes, solve_cantilever(work, mesh, tip="TipSurface")[0]))
     print("QualMesh C3D10 (nodes, mean tip deflection mm):", ours)
     print("Gmsh C3D10 (nodes, mean tip deflection mm):", theirs)
-    gmsh_needed = coarsest_within(theirs)
-    assert gmsh_needed is not None, theirs
-    assert coarsest_within(ours) <= gmsh_needed, (ours, theirs)
+    gmsh_needed, ours_needed = coarsest_within(theirs), coarsest_within(ours)
+    print(f"coarsest within 0.5 %: QualMesh {ours_needed} nodes, Gmsh {gmsh_needed}")
+    assert gmsh_needed is not None and ours_needed is not None, (ours, theirs)
+    assert ours_needed <= gmsh_needed, (ours, theirs)
 
 
 def test_cantilever_example_runs_as_documented(tmp_path):
