@@ -13,6 +13,8 @@
 // wires (exact up to the points where a neighbouring curved face's edge is discretised), plus its interior nodes in
 // the sized way; a curved face becomes the triangles of its mesh, all with the face's number as marker.
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
@@ -213,7 +215,11 @@ class PlcBuilder {
       if (planar[f] && tolerances[f] > 0 && triangles[f].empty()) tolerances[f] += 2 * max_chord_error;
     model_.summary.face_tolerances.assign(tolerances.begin() + 1, tolerances.end());
     model_.summary.deflection_used = max_chord_error;
-    region_margin_ = 2 * std::max(max_chord_error, seed_deflection_);
+    // A region seed must lie inside the PLC, whose facets stray from the CAD surface by at most the chordal error:
+    // twice that from every wall (add_regions measures it). The coarse BRepMesh run only gives the rays' starts, so
+    // its deflection does not count (with it, bottle.brep's 1 mm wall left no seed and the sized surface was
+    // dropped for the tessellation).
+    region_margin_ = 2 * std::max(max_chord_error, 1e-9 * diagonal_);
   }
 
   // The faces' triangles remeshed on their surfaces (face_remesh.cpp, isotropic remeshing towards the face's size;
@@ -691,6 +697,15 @@ class PlcBuilder {
         gp_Pnt seed = start.Translated(gp_Vec(c.inward) * (0.5 * nearest));
         classifier.Perform(seed, 1e-9 * diagonal_);
         if (classifier.State() != TopAbs_IN) continue;
+        // The ray measured one direction; the seed keeps the margin from every wall (the solid's shells: a solid
+        // itself is at distance 0 from a point inside it).
+        const TopoDS_Vertex point = BRepBuilderAPI_MakeVertex(seed).Vertex();
+        bool clear = true;
+        for (TopExp_Explorer shells(solid, TopAbs_SHELL); shells.More() && clear; shells.Next()) {
+          BRepExtrema_DistShapeShape distance(point, shells.Current());
+          clear = distance.IsDone() && distance.Value() > margin;
+        }
+        if (!clear) continue;
         model_.plc.regions.push_back({to_point(seed), s, 0});
         found = true;
       }

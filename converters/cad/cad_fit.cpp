@@ -36,6 +36,8 @@ namespace {
 
 constexpr int kNone = 0;
 constexpr int kSeveral = -1;
+// Rounds of boundary-cap removal for the mid nodes (fit_mesh_to_cad).
+constexpr int kMaxCapRounds = 4;
 
 // The one CAD entity (marker > 0) a node lies on, kNone, or kSeveral.
 void note(std::vector<int>& on, Index node, int marker) {
@@ -242,17 +244,35 @@ CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options,
       report.num_flat_caps_removed = remove_flat_boundary_tets(mesh);
     }
     if (!fit_options.second_order) return report;
-    const Index first_mid = static_cast<Index>(mesh.points.size());
-    make_second_order(mesh);
-    const std::vector<int> mid_labels = face_labels(mesh);  // the faces changed: flat caps were removed
-    std::vector<int> on_edge(mesh.points.size(), kNone), on_face(mesh.points.size(), kNone);
-    for (std::size_t e = 0; e < mesh.edges.size(); ++e) note(on_edge, mesh.edge_mid[e], mesh.edge_marker[e]);
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-      for (Index v : mesh.face_mid[f]) note(on_face, v, mid_labels[f]);
-    std::size_t unused = 0;
-    const std::vector<NodeMove> moves = targets(projector, mesh, on_edge, on_face, first_mid, unused, nullptr);
-    report.num_mid_targets = moves.size();
-    report.mids = move_nodes_checked(mesh, moves, fit_options.moves);
+    // Mid nodes. A boundary cap (a tetrahedron with two boundary faces) has corners whose edges all lie on the
+    // boundary: where the surface bends towards the cap no interior node can keep its Jacobian positive, and every
+    // mid node it blocks would be left part way. Such caps are removed from the linear mesh when both faces are on
+    // one CAD face (its boundary diagonal flips, the volume changes by the cap's), and the mid nodes are placed
+    // again, for a few rounds. (Caps across a CAD edge stay: splitting their free edge, tried, left as many nodes
+    // part way and worse tetrahedra.)
+    TetMesh linear;  // the linear mesh the rounds start from (make_second_order keeps the tets' order)
+    for (int round = 0;; ++round) {
+      if (round > 0) mesh = linear;
+      else linear = mesh;
+      const Index first_mid = static_cast<Index>(mesh.points.size());
+      make_second_order(mesh);
+      const std::vector<int> mid_labels = face_labels(mesh);  // the faces changed: flat caps were removed
+      std::vector<int> on_edge(mesh.points.size(), kNone), on_face(mesh.points.size(), kNone);
+      for (std::size_t e = 0; e < mesh.edges.size(); ++e) note(on_edge, mesh.edge_mid[e], mesh.edge_marker[e]);
+      for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+        for (Index v : mesh.face_mid[f]) note(on_face, v, mid_labels[f]);
+      std::size_t unused = 0;
+      const std::vector<NodeMove> moves = targets(projector, mesh, on_edge, on_face, first_mid, unused, nullptr);
+      report.num_mid_targets = moves.size();
+      report.mids = move_nodes_checked(mesh, moves, fit_options.moves);
+      if (report.mids.num_full == report.mids.num_requested || round == kMaxCapRounds) break;
+      const std::vector<std::size_t>& blocking = report.mids.blocking_elements;
+      const std::size_t removed = remove_boundary_caps(linear, [&](std::size_t t) {
+        return std::binary_search(blocking.begin(), blocking.end(), t);
+      });
+      if (removed == 0) break;
+      report.num_curving_caps_removed += removed;
+    }
   } catch (const Standard_Failure& failure) {
     throw InputError(ErrorCode::Parse,
                      std::string("OpenCASCADE failed projecting nodes onto the model: ") + failure.GetMessageString(),

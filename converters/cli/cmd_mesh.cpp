@@ -64,6 +64,7 @@ std::string finish_mesh(const MeshArgs& args, TetMesh& mesh, const std::optional
     r.num_mid_targets = mids.num_mid_targets;
     r.mids = mids.mids;
     r.num_flat_caps_removed += mids.num_flat_caps_removed;
+    r.num_curving_caps_removed = mids.num_curving_caps_removed;
   }
   char line[600];
   std::snprintf(line, sizeof line, "cad fit:     %zu boundary nodes onto their CAD faces/edges (max offset %.3g): %zu in full (%zu moving "
@@ -75,10 +76,11 @@ std::string finish_mesh(const MeshArgs& args, TetMesh& mesh, const std::optional
   if (fit.second_order) {
     std::snprintf(line, sizeof line, "curving:     %zu mid nodes onto their CAD faces/edges: %zu in full (%zu moving interior nodes too), "
                 "%zu relaxed toward straight, %zu left straight; min Jacobian ratio %.3g, %zu elements below %.2g; %zu "
-                "flat elements (flat in the straight mesh already)\n",
+                "flat elements (flat in the straight mesh already); %zu boundary caps removed so that mid nodes "
+                "reach the surface\n",
                 r.num_mid_targets, r.mids.num_full, r.mids.num_dragged, r.mids.num_partial, r.mids.num_refused,
                 r.mids.min_jacobian_ratio, r.mids.num_bad_elements, fit.moves.min_jacobian_ratio,
-                r.mids.num_flat_elements);
+                r.mids.num_flat_elements, r.num_curving_caps_removed);
     lines += line;
   }
   return lines;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <unordered_map>
@@ -215,9 +216,11 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
     const Point3 start = mesh.points[move.node];
     const Point3 full{move.target[0] - start[0], move.target[1] - start[1], move.target[2] - start[2]};
     double done = 0;
+    std::vector<std::size_t> blocking;
     if (try_shift({move.node}, full)) {
       done = 1;
     } else if (options.drag_interior) {
+      blocking = spoiled;
       std::vector<Index> group{move.node};
       for (std::size_t t : spoiled)
         for (Index v : element_nodes(t))
@@ -228,7 +231,10 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
         done = 1;
         ++report.num_dragged;
       }
+    } else {
+      blocking = spoiled;
     }
+    if (done < 1) report.blocking_elements.insert(report.blocking_elements.end(), blocking.begin(), blocking.end());
     for (double fraction : {0.75, 0.5, 0.25}) {
       if (done > 0) break;
       if (try_shift({move.node}, {fraction * full[0], fraction * full[1], fraction * full[2]})) done = fraction;
@@ -242,6 +248,9 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
                                   (move.target[2] - p[2]) * (move.target[2] - p[2]));
     report.max_distance_left = std::max(report.max_distance_left, left);
   }
+  std::sort(report.blocking_elements.begin(), report.blocking_elements.end());
+  report.blocking_elements.erase(std::unique(report.blocking_elements.begin(), report.blocking_elements.end()),
+                                 report.blocking_elements.end());
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
     if (is_flat(mesh, t)) {
       ++report.num_flat_elements;
@@ -259,7 +268,16 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
 }
 
 std::size_t remove_flat_boundary_tets(TetMesh& mesh, double flat) {
-  if (mesh.is_second_order()) throw std::invalid_argument("remove_flat_boundary_tets: linear meshes only");
+  std::size_t removed = 0;
+  for (;;) {
+    const std::size_t n = remove_boundary_caps(mesh, [&](std::size_t t) { return is_flat_corners(mesh, t, flat); });
+    if (n == 0) return removed;
+    removed += n;
+  }
+}
+
+std::size_t remove_boundary_caps(TetMesh& mesh, const std::function<bool(std::size_t)>& select) {
+  if (mesh.is_second_order()) throw std::invalid_argument("remove_boundary_caps: linear meshes only");
   const std::vector<int> labels = face_labels(mesh);
   std::vector<std::uint64_t> cad_edges;
   for (const auto& e : mesh.edges) cad_edges.push_back(edge_key(e[0], e[1]));
@@ -274,84 +292,95 @@ std::size_t remove_flat_boundary_tets(TetMesh& mesh, double flat) {
     std::sort(f.begin(), f.end());
     return f;
   };
-  std::size_t removed = 0;
-  for (bool changed = true; changed;) {
-    changed = false;
-    std::map<std::array<Index, 3>, std::size_t> face_index;
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) face_index.emplace(sorted(mesh.faces[f]), f);
-    std::vector<std::uint8_t> dead_tet(mesh.tets.size(), 0), dead_face(mesh.faces.size(), 0);
-    struct NewFace {
-      std::array<Index, 3> v;
-      int facet, marker;
-    };
-    std::vector<NewFace> added;
-    std::vector<std::uint8_t> touched(mesh.points.size(), 0);  // one removal per neighbourhood and pass
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-      if (!is_flat_corners(mesh, t, flat)) continue;
-      const auto& v = mesh.tets[t];
-      if (touched[v[0]] || touched[v[1]] || touched[v[2]] || touched[v[3]]) continue;
-      int boundary[4], n = 0;
-      std::size_t which[4];
-      for (int i = 0; i < 4; ++i) {
-        const auto it = face_index.find(sorted(tet_face(v, i)));
-        if (it != face_index.end() && !dead_face[it->second]) {
-          boundary[n] = i;
-          which[n++] = it->second;
-        }
-      }
-      if (n != 2 || labels[which[0]] != labels[which[1]]) continue;
-      // The two boundary faces are opposite corners boundary[0] and boundary[1]; they share the edge of the other
-      // two corners.
-      int others[2], k = 0;
-      for (int i = 0; i < 4; ++i)
-        if (i != boundary[0] && i != boundary[1]) others[k++] = i;
-      if (std::binary_search(cad_edges.begin(), cad_edges.end(), edge_key(v[others[0]], v[others[1]]))) continue;
-      dead_tet[t] = 1;
-      dead_face[which[0]] = dead_face[which[1]] = 1;
-      // The cap is flat, so the new boundary faces point where the old ones did: orient each new face along the
-      // old faces' summed normal (the tet's own orientation is not to be trusted when it is flat).
-      const auto normal = [&](const std::array<Index, 3>& f) {
-        const Point3 &a = mesh.points[f[0]], &b = mesh.points[f[1]], &c = mesh.points[f[2]];
-        const Point3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        return Point3{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      };
-      const Point3 n0 = normal(mesh.faces[which[0]]), n1 = normal(mesh.faces[which[1]]);
-      const Point3 up{n0[0] + n1[0], n0[1] + n1[1], n0[2] + n1[2]};
-      for (int i : others) {
-        std::array<Index, 3> f = tet_face(v, i);
-        const Point3 n = normal(f);
-        if (n[0] * up[0] + n[1] * up[1] + n[2] * up[2] < 0) std::swap(f[1], f[2]);
-        added.push_back({f, mesh.face_facet.empty() ? -1 : mesh.face_facet[which[0]],
-                         mesh.face_marker.empty() ? 0 : mesh.face_marker[which[0]]});
-      }
-      for (Index x : v) touched[x] = 1;
-      ++removed;
-      changed = true;
-    }
-    if (!changed) break;
-    TetMesh next = mesh;
-    next.tets.clear();
-    next.tet_region.clear();
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-      if (dead_tet[t]) continue;
-      next.tets.push_back(mesh.tets[t]);
-      if (!mesh.tet_region.empty()) next.tet_region.push_back(mesh.tet_region[t]);
-    }
-    next.faces.clear();
-    next.face_facet.clear();
-    next.face_marker.clear();
-    const auto keep_face = [&](const std::array<Index, 3>& f, int facet, int marker) {
-      next.faces.push_back(f);
-      if (!mesh.face_facet.empty()) next.face_facet.push_back(facet);
-      if (!mesh.face_marker.empty()) next.face_marker.push_back(marker);
-    };
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-      if (!dead_face[f])
-        keep_face(mesh.faces[f], mesh.face_facet.empty() ? -1 : mesh.face_facet[f],
-                  mesh.face_marker.empty() ? 0 : mesh.face_marker[f]);
-    for (const NewFace& f : added) keep_face(f.v, f.facet, f.marker);
-    mesh = std::move(next);
+  std::map<std::array<Index, 3>, std::size_t> face_index;
+  std::vector<std::uint64_t> face_edges;  // every edge of a boundary or internal face
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    face_index.emplace(sorted(mesh.faces[f]), f);
+    for (int k = 0; k < 3; ++k) face_edges.push_back(edge_key(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3]));
   }
+  std::sort(face_edges.begin(), face_edges.end());
+  std::map<std::array<Index, 3>, int> tets_at;  // how many tets have each face of mesh.faces
+  for (const auto& v : mesh.tets)
+    for (int i = 0; i < 4; ++i) {
+      const auto key = sorted(tet_face(v, i));
+      if (face_index.count(key)) ++tets_at[key];
+    }
+  std::vector<std::uint8_t> dead_tet(mesh.tets.size(), 0), dead_face(mesh.faces.size(), 0);
+  struct NewFace {
+    std::array<Index, 3> v;
+    int facet, marker;
+  };
+  std::vector<NewFace> added;
+  std::vector<std::uint8_t> touched(mesh.points.size(), 0);  // one removal per neighbourhood and pass
+  std::size_t removed = 0;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& v = mesh.tets[t];
+    if (touched[v[0]] || touched[v[1]] || touched[v[2]] || touched[v[3]]) continue;
+    int boundary[4], n = 0;
+    std::size_t which[4];
+    bool internal = false;  // a face between two tetrahedra: not a cap of the hull
+    for (int i = 0; i < 4; ++i) {
+      const auto key = sorted(tet_face(v, i));
+      const auto it = face_index.find(key);
+      if (it != face_index.end()) {
+        boundary[n] = i;
+        which[n++] = it->second;
+        internal = internal || tets_at[key] != 1;
+      }
+    }
+    if (internal || n != 2 || labels[which[0]] != labels[which[1]]) continue;
+    // The two boundary faces are opposite corners boundary[0] and boundary[1]; they share the edge of the other
+    // two corners; the new faces share the edge of corners boundary[0] and boundary[1].
+    int others[2], k = 0;
+    for (int i = 0; i < 4; ++i)
+      if (i != boundary[0] && i != boundary[1]) others[k++] = i;
+    if (std::binary_search(cad_edges.begin(), cad_edges.end(), edge_key(v[others[0]], v[others[1]]))) continue;
+    if (std::binary_search(face_edges.begin(), face_edges.end(), edge_key(v[boundary[0]], v[boundary[1]]))) continue;
+    if (!select(t)) continue;
+    dead_tet[t] = 1;
+    dead_face[which[0]] = dead_face[which[1]] = 1;
+    // The new boundary faces point where the old ones did: orient each along the old faces' summed normal (the
+    // tet's own orientation is not to be trusted when it is flat).
+    const auto normal = [&](const std::array<Index, 3>& f) {
+      const Point3 &a = mesh.points[f[0]], &b = mesh.points[f[1]], &c = mesh.points[f[2]];
+      const Point3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      return Point3{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    };
+    const Point3 n0 = normal(mesh.faces[which[0]]), n1 = normal(mesh.faces[which[1]]);
+    const Point3 up{n0[0] + n1[0], n0[1] + n1[1], n0[2] + n1[2]};
+    for (int i : others) {
+      std::array<Index, 3> f = tet_face(v, i);
+      const Point3 nf = normal(f);
+      if (nf[0] * up[0] + nf[1] * up[1] + nf[2] * up[2] < 0) std::swap(f[1], f[2]);
+      added.push_back({f, mesh.face_facet.empty() ? -1 : mesh.face_facet[which[0]],
+                       mesh.face_marker.empty() ? 0 : mesh.face_marker[which[0]]});
+    }
+    for (Index x : v) touched[x] = 1;
+    ++removed;
+  }
+  if (removed == 0) return 0;
+  TetMesh next = mesh;
+  next.tets.clear();
+  next.tet_region.clear();
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    if (dead_tet[t]) continue;
+    next.tets.push_back(mesh.tets[t]);
+    if (!mesh.tet_region.empty()) next.tet_region.push_back(mesh.tet_region[t]);
+  }
+  next.faces.clear();
+  next.face_facet.clear();
+  next.face_marker.clear();
+  const auto keep_face = [&](const std::array<Index, 3>& f, int facet, int marker) {
+    next.faces.push_back(f);
+    if (!mesh.face_facet.empty()) next.face_facet.push_back(facet);
+    if (!mesh.face_marker.empty()) next.face_marker.push_back(marker);
+  };
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    if (!dead_face[f])
+      keep_face(mesh.faces[f], mesh.face_facet.empty() ? -1 : mesh.face_facet[f],
+                mesh.face_marker.empty() ? 0 : mesh.face_marker[f]);
+  for (const NewFace& f : added) keep_face(f.v, f.facet, f.marker);
+  mesh = std::move(next);
   return removed;
 }
 

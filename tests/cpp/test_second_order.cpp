@@ -311,3 +311,81 @@ TEST(SecondOrder, AnInteriorNodeIsDraggedAlongAndRefusedMovesChangeNothing) {
 
 }  // namespace
 }  // namespace qualmesh
+
+namespace qualmesh {
+namespace {
+
+double six_volume(const TetMesh& m, const std::array<Index, 4>& t) {
+  const Point3 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]], &d = m.points[t[3]];
+  return (b[0] - a[0]) * ((c[1] - a[1]) * (d[2] - a[2]) - (c[2] - a[2]) * (d[1] - a[1])) -
+         (b[1] - a[1]) * ((c[0] - a[0]) * (d[2] - a[2]) - (c[2] - a[2]) * (d[0] - a[0])) +
+         (b[2] - a[2]) * ((c[0] - a[0]) * (d[1] - a[1]) - (c[1] - a[1]) * (d[0] - a[0]));
+}
+
+// A hexagonal bipyramid: six tets around the axis c-d (c = (0,0,-1), d = (0,0,1)), each a boundary cap (its faces
+// (c, p_i, p_i+1) and (d, p_i, p_i+1) on the hull, one label, its free edge c-d inside). remove_boundary_caps takes
+// exactly the caps it is asked for (one per neighbourhood), keeps the boundary a closed manifold facing out, and
+// the volume drops by the cap's; a cap whose free edge has become a boundary edge is left.
+TEST(BoundaryCaps, RemovesTheCapsAskedForAndKeepsTheBoundaryClosedAndOutward) {
+  TetMesh m;
+  const Index c = 6, d = 7;
+  for (int i = 0; i < 6; ++i) m.points.push_back({std::cos(i * M_PI / 3), std::sin(i * M_PI / 3), 0});
+  m.points.push_back({0, 0, -1});
+  m.points.push_back({0, 0, 1});
+  for (Index i = 0; i < 6; ++i) {
+    std::array<Index, 4> t{c, d, i, static_cast<Index>((i + 1) % 6)};
+    if (six_volume(m, t) < 0) std::swap(t[2], t[3]);
+    m.tets.push_back(t);
+    const Index j = (i + 1) % 6;
+    m.faces.push_back({c, j, i});  // outward below
+    m.faces.push_back({d, i, j});  // outward above
+    m.face_marker.push_back(3);
+    m.face_marker.push_back(3);
+    m.face_facet.push_back(0);
+    m.face_facet.push_back(0);
+  }
+  double before = 0;
+  for (const auto& t : m.tets) before += six_volume(m, t);
+  EXPECT_EQ(remove_boundary_caps(m, [](std::size_t) { return false; }), 0u);
+  ASSERT_EQ(m.tets.size(), 6u);
+  const double cap = six_volume(m, m.tets[0]);
+  EXPECT_EQ(remove_boundary_caps(m, [](std::size_t t) { return t == 0; }), 1u);
+  ASSERT_EQ(m.tets.size(), 5u);
+  ASSERT_EQ(m.faces.size(), 12u);
+  double after = 0;
+  for (const auto& t : m.tets) after += six_volume(m, t);
+  EXPECT_NEAR(after, before - cap, 1e-12);
+  // Closed and manifold: every boundary edge is on exactly two faces, used once each way.
+  std::map<std::pair<Index, Index>, int> directed;
+  for (const auto& f : m.faces)
+    for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+  for (const auto& [e, n] : directed) {
+    EXPECT_EQ(n, 1);
+    EXPECT_EQ(directed.count({e.second, e.first}), 1u);
+  }
+  // Outward: the faces' signed volumes add up to the mesh's (divergence theorem, 6V = sum of det(a, b, c)).
+  double flux = 0;
+  for (const auto& f : m.faces) {
+    const Point3 &a = m.points[f[0]], &b = m.points[f[1]], &p = m.points[f[2]];
+    flux += a[0] * (b[1] * p[2] - b[2] * p[1]) - a[1] * (b[0] * p[2] - b[2] * p[0]) + a[2] * (b[0] * p[1] - b[1] * p[0]);
+  }
+  EXPECT_NEAR(flux, after, 1e-12);
+  // The free edge c-d is now on the boundary: no cap around it can go any more.
+  EXPECT_EQ(remove_boundary_caps(m, [](std::size_t) { return true; }), 0u);
+}
+
+// move_nodes_checked names the elements that kept a move from its target.
+TEST(BoundaryCaps, BlockingElementsAreReported) {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.tets = {{0, 1, 2, 3}};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  make_second_order(m);
+  const NodeMoveReport ok = move_nodes_checked(m, {{m.tet_mid[0][0], {0.5, -0.05, 0}}});
+  EXPECT_TRUE(ok.blocking_elements.empty());
+  const NodeMoveReport big = move_nodes_checked(m, {{m.tet_mid[0][0], {0.5, 5, 5}}});
+  EXPECT_EQ(big.blocking_elements, (std::vector<std::size_t>{0}));
+}
+
+}  // namespace
+}  // namespace qualmesh

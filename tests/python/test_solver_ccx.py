@@ -333,30 +333,20 @@ def test_thick_cylinder_matches_lame_and_stays_on_the_cad_surface(run_qualmesh, 
 
 
 CAD_FILES = sorted(p.name for p in (SHARED_DIR / "data" / "cad").glob("*")) if (SHARED_DIR / "data" / "cad").exists() else []
-# Files whose run is too long for every CI run. They run with QUALMESH_SLOW_TESTS=1. Measured 2026-12-02 (default
-# size, --order 2, mesh + ccx, with a benchmark running beside): 918_pump 54 s and 1385_Laufrad 78 s, both pass
-# (18.5k and 43k corner nodes); U_Joint_2 meshes in 156 s (142650 corner nodes: the relaxed rule gives up and the
-# paper's rule meshes it) and bottle not within 300 s (its tessellated surface makes the relaxed rule give up, and the
-# paper's rule then runs for minutes; since the sliver-insertion speed-up of 2026-12-02 its linear mesh takes 133 s,
-# 80503 nodes, 83 s of it in the improvement pass, min dihedral 0.006 deg; the --order 2 deck was not run). wrenchnut (28 s)
-# and Zylkopf (its mesh took 20 min before the projection safety net, 8.5 s after) run in every CI run.
+# Files whose run is too long for every CI run. They run with QUALMESH_SLOW_TESTS=1. Measured (default size,
+# --order 2, mesh + ccx): 918_pump 54 s and 1385_Laufrad 78 s, both pass (18.5k and 43k corner nodes; 2026-12-02);
+# bottle.brep meshes in 80 s from its sized surface (334283 nodes: its region seed keeps only the chordal margin
+# since 2026-12-03, before which it fell back to the tessellation, whose mesh held a flat tetrahedron that ccx
+# refused) and ccx solves it in 93 s (4 GB); U_Joint_2 meshes in 276 s (1517385 nodes: the relaxed rule gives up and
+# the paper's rule meshes it), a deck ccx has not been run on here (2026-12-03). wrenchnut (28 s) and Zylkopf (its mesh
+# took 20 min before the projection safety net, 8.5 s after) run in every CI run.
 SLOW_CAD_FILES = {
-    "U_Joint_2.stp": "meshing alone takes 156 s (142650 corner nodes)", "bottle.brep": "the linear mesh alone takes 133 s",
+    "U_Joint_2.stp": "meshing alone takes 276 s (1517385 nodes)", "bottle.brep": "mesh 80 s + ccx 93 s (4 GB)",
     "1385_Laufrad_1000.stp": "78 s", "918_pump_carter_sup_21_03_2006.stp": "54 s",
 }
 
 
-# Known defect of the refinement engine (issue 16), not of the deck: bottle.brep's mesh (slow set) held an exactly
-# flat tetrahedron with its four corners on the boundary but no boundary face, which ccx refuses ("nonpositive
-# jacobian determinant in element 228597"). model1.igs had the same (element 46327) until the improvement pass after
-# extraction (core/src/improve) and the sized CAD surface: it passes since 2026-12-01. bottle.brep was not run again
-# (it still meshes from the tessellation); strict: the day it passes, the mark goes.
-ENGINE_FLAT_TET = {"bottle.brep"}
-
-
-@pytest.mark.parametrize("name", [
-    pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="flat interior tetrahedron from the engine (issue 16)"))
-    if n in ENGINE_FLAT_TET else n for n in CAD_FILES])
+@pytest.mark.parametrize("name", CAD_FILES)
 def test_ccx_runs_the_second_order_deck_of_every_cad_file(run_qualmesh, tmp_path, name):
     require_tool("ccx")
     if name in SLOW_CAD_FILES and os.environ.get("QUALMESH_SLOW_TESTS") != "1":

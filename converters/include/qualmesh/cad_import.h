@@ -141,6 +141,8 @@ struct CadFitReport {
   NodeMoveReport mids;                   // the moves of the mid nodes (Jacobian checks at the ten nodes)
   std::size_t num_fixed_vertices = 0;    // nodes on two or more CAD edges (CAD vertices): never moved
   std::size_t num_flat_caps_removed = 0; // flat tetrahedra against the boundary removed (remove_flat_boundary_tets)
+  // Second order: boundary caps removed because they kept a mid node off its curved face (remove_boundary_caps).
+  std::size_t num_curving_caps_removed = 0;
 };
 
 // Moves every boundary node of `mesh` onto the CAD face or edge it lies on: a node on one marked edge (Edge<e>)

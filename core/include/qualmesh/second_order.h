@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "qualmesh/tet_mesh.h"
@@ -65,11 +66,15 @@ struct NodeMoveReport {
   // rounding. No move made them so (a move never makes an element worse than acceptable): the straight mesh had them.
   std::size_t num_flat_elements = 0;
   double min_jacobian_ratio = 1;  // over the second-order elements that are not flat (1 for a linear mesh)
+  // The elements that kept a move from being made in full (unacceptable at its target, the interior drag
+  // included), sorted, each once.
+  std::vector<std::size_t> blocking_elements;
 };
 
 // Moves each node towards its target, in the order given, keeping every element that has the node acceptable
 // (NodeMoveOptions): the full move when that is acceptable, else the full move dragging the interior nodes of the
-// elements it spoils, else the largest of 3/4, 1/2, 1/4 of it that is acceptable, else none. An element that was unacceptable before a move only has to get no worse. Mutates mesh.points only.
+// elements it spoils, else the largest of 3/4, 1/2, 1/4 of it that is acceptable, else none. An element that was unacceptable before a move only has to get no worse.
+// Mutates mesh.points only.
 NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& moves,
                                   const NodeMoveOptions& options = {});
 
@@ -81,5 +86,16 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
 // the mesher leaves such caps where a curved CAD face's tessellation triangles are nearly coplanar. Linear meshes
 // only (before make_second_order). Returns how many tetrahedra were removed.
 std::size_t remove_flat_boundary_tets(TetMesh& mesh, double flat = 1e-6);
+
+// Removes the boundary caps `select(t)` picks, as remove_flat_boundary_tets does for flat ones: a tetrahedron t with
+// exactly two faces in mesh.faces, both on the hull (of no other tetrahedron), with the same face label, whose common
+// edge is no TetMesh::edges entry, whose other two faces are in mesh.faces nowhere and whose opposite edge lies on
+// no face of mesh.faces (so the boundary stays a manifold). Its two other faces become boundary faces in their
+// place; the volume changes by its |V|. One pass (indices are those of `mesh` as given); returns how many were
+// removed. Linear meshes only. fit_mesh_to_cad removes the caps that keep a mid node off its curved face: such a
+// cap's two boundary faces meet at a corner whose three edges all lie on the face, so no interior node can keep its
+// Jacobian positive once they follow the surface.
+std::size_t remove_boundary_caps(TetMesh& mesh, const std::function<bool(std::size_t)>& select);
+
 
 }  // namespace qualmesh
