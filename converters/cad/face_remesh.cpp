@@ -250,7 +250,7 @@ class FaceRemesher {
       const K::Point_3 &a = mesh_.point(v[0]), &b = mesh_.point(v[1]), &c = mesh_.point(v[2]);
       *min_angle = std::min(*min_angle, min_corner_deg(a, b, c));
       const auto stray = [&](const K::Point_3& p) {
-        const gp_Pnt2d uv = analysis_->ValueOfUV(to_gp(p), precision_);
+        const gp_Pnt2d uv = parameters_near(p, v);
         *chord_error = std::max(*chord_error, surface_.Value(uv.X(), uv.Y()).Distance(to_gp(p)));
       };
       stray(CGAL::centroid(a, b, c));
@@ -305,6 +305,15 @@ class FaceRemesher {
     return K::Point_3(q.X(), q.Y(), q.Z());
   }
 
+  // The surface parameters of the point nearest to p, a point of a triangle with corners v: OpenCASCADE's point
+  // inversion started from a corner's parameters when one has some (a local search, against a global one whose
+  // sampling grid took 70% of wrenchnut.stp's surface meshing), else the global one.
+  gp_Pnt2d parameters_near(const K::Point_3& p, const std::array<VertexD, 3>& v) const {
+    for (VertexD w : v)
+      if (has_uv_[w]) return analysis_->NextValueOfUV(uv_[w], to_gp(p), precision_);
+    return analysis_->ValueOfUV(to_gp(p), precision_);
+  }
+
   // How triangle f lies against the surface: the cosine of the angle between its normal and the surface's normal at
   // the surface point nearest its centroid (the face is FORWARD: its triangles turn counter-clockwise about the
   // surface's normal, as mesh_curved_face makes them); 1 where the normal is not defined (a pole).
@@ -314,7 +323,7 @@ class FaceRemesher {
     const K::Vector_3 normal = CGAL::cross_product(b - a, c - a);
     const double length = std::sqrt(normal.squared_length());
     if (!(length > 0)) return -1.0;
-    const gp_Pnt2d uv = analysis_->ValueOfUV(to_gp(CGAL::centroid(a, b, c)), precision_);
+    const gp_Pnt2d uv = parameters_near(CGAL::centroid(a, b, c), v);
     BRepLProp_SLProps props(surface_, uv.X(), uv.Y(), 1, precision_);
     if (!props.IsNormalDefined()) return 1.0;
     const gp_Dir n = props.Normal();

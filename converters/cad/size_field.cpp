@@ -26,7 +26,6 @@ namespace {
 
 constexpr int kSamples = 9;  // per parameter direction
 // Default smallest size, relative to the target: a hole of radius target/30 still gets about 6 segments.
-constexpr double kDefaultMinSizeFactor = 1.0 / 30;
 // Edge length on a narrow face relative to its width estimate 2 A / P (a square of side a gets 1.1 a: no split).
 constexpr double kThinFaceFactor = 2.2;
 

@@ -65,6 +65,7 @@ CadLocalSize parse_local_size(const std::string& text) {
   return local;
 }
 
+
 // A finite number above `lo` (or at least `lo` when closed), for the size options.
 CLI::Validator finite_above(double lo, bool closed, const std::string& what) {
   return CLI::Validator(
@@ -93,6 +94,12 @@ CadOptions cad_options_of(const InputOptions& options) {
 }
 
 }  // namespace
+
+double cad_min_split_length(const InputOptions& options, double size) {
+  double smallest = options.min_size > 0 ? options.min_size : kDefaultMinSizeFactor * size;
+  for (const std::string& text : options.local_sizes) smallest = std::min(smallest, parse_local_size(text).size);
+  return smallest > 0 ? 0.5 * smallest : 0;
+}
 
 void add_size_options(CLI::App& command, InputOptions& options);  // below
 

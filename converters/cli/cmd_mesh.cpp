@@ -99,6 +99,9 @@ int run_mesh(MeshArgs& args) {
   // instead of 4-7x). Surfaces and PLCs keep the paper's rule until the relaxed rule's defects there are gone.
   if (args.encroaching->count() == 0 && has_cad_faces(args.input))
     args.options.encroaching = MeshOptions::Encroaching::Steiner;
+  // A CAD surface has nothing finer than the smallest size asked for: encroachment splits stop at half of it
+  // (MeshOptions::min_split_length), so that a cusp of the model does not draw refinement down to rounding.
+  if (has_cad_faces(args.input) && size > 0) args.options.min_split_length = cad_min_split_length(args.input_options, size);
   args.options.project_to_boundary = cad_projector(args.input, args.input_options);  // curved CAD faces and edges
   if (!check_mesh_input(plc, args.input, args.options, args.verbose)) return kExitBadInput;  // as `info` validates
   if (!check_size_estimate(plc, args.input, args.options, args.limits, args.verbose)) return kExitResource;  // mesh_limits.h
@@ -149,9 +152,10 @@ int run_mesh(MeshArgs& args) {
                 "meshed again with them on the facets (the CAD fit moves them)\n");
   if (st.encroaching_fell_back)
     std::printf("encroaching: steiner mode gave up (-v says why); meshed again with the paper's rule\n");
-  std::printf("insertions:  rule 1 %zu, rule 2 %zu, rule 3 %zu; %zu centres rejected; %zu small-angle skips\n",
+  std::printf("insertions:  rule 1 %zu, rule 2 %zu, rule 3 %zu; %zu centres rejected; %zu small-angle skips; %zu "
+              "encroached elements below the split floor kept\n",
               st.num_rule1_insertions, st.num_rule2_insertions, st.num_rule3_insertions,
-              st.num_rejected_circumcenters, st.num_skipped_small_angle);
+              st.num_rejected_circumcenters, st.num_skipped_small_angle, st.num_skipped_floor);
   std::printf("quality:     max radius-edge %.4g (bound %.4g), %.4g away from acute input angles; min dihedral %.4g deg\n",
               st.max_radius_edge, args.options.radius_edge_bound, st.max_radius_edge_away_from_acute,
               st.min_dihedral_deg);

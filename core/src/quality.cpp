@@ -121,7 +121,11 @@ double tet_signed_volume(const Point3& p0, const Point3& p1, const Point3& p2, c
   return dot(cross(sub(p1, p0), sub(p2, p0)), sub(p3, p0)) / 6.0;
 }
 
-TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
+namespace {
+
+// Everything of tet_quality but the dihedral angles: volume, edge lengths, circumradius (what tet_radius_edge needs,
+// without the angles' atan2 and cross products; the improvement pass's radius-edge guard calls it per trial move).
+TetQuality tet_quality_without_angles(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
   const Point3* p[4] = {&p0, &p1, &p2, &p3};
   TetQuality q;
   const Vec a = sub(p1, p0), b = sub(p2, p0), c = sub(p3, p0);
@@ -135,7 +139,6 @@ TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, con
     q.shortest_edge = std::min(q.shortest_edge, len);
     q.longest_edge = std::max(q.longest_edge, len);
   }
-  std::tie(q.min_dihedral_deg, q.max_dihedral_deg) = min_max_dihedral_deg(p);
 
   const double inf = std::numeric_limits<double>::infinity();
   if (det == 0) {
@@ -160,6 +163,15 @@ TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, con
   return q;
 }
 
+}  // namespace
+
+TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
+  TetQuality q = tet_quality_without_angles(p0, p1, p2, p3);
+  const Point3* p[4] = {&p0, &p1, &p2, &p3};
+  std::tie(q.min_dihedral_deg, q.max_dihedral_deg) = min_max_dihedral_deg(p);
+  return q;
+}
+
 double tet_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
   // The angles alone, as tet_quality() computes them (no circumradius: exact for a flat cell, and not needed).
   const Point3* p[4] = {&p0, &p1, &p2, &p3};
@@ -167,7 +179,7 @@ double tet_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point3& p2
 }
 
 double tet_radius_edge(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
-  return tet_quality(p0, p1, p2, p3).radius_edge;
+  return tet_quality_without_angles(p0, p1, p2, p3).radius_edge;
 }
 
 }  // namespace qualmesh

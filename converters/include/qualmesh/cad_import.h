@@ -30,6 +30,9 @@ namespace qualmesh {
 
 // A target edge length on one named CAD entity (FreeCAD's names: Face<id>, Edge<id>, Solid<id>, numbered as in
 // the PLC's markers and the output groups).
+// CadOptions::min_size's default, relative to the target size.
+inline constexpr double kDefaultMinSizeFactor = 1.0 / 30;
+
 struct CadLocalSize {
   enum class Kind { Face, Edge, Solid };
   Kind kind = Kind::Face;
@@ -53,7 +56,7 @@ struct CadOptions {
   // Gmsh gives a CAD vertex without a prescribed size).
   double size = 0;
   // Smallest edge length the curvature and thin-face refinement may ask for (CharacteristicLengthMin); 0 = a 30th
-  // of the target. Local sizes are not bounded by it.
+  // of the target (kDefaultMinSizeFactor). Local sizes are not bounded by it.
   double min_size = 0;
   // Elements per full circle of a curved edge or face (Gmsh's MeshSizeFromCurvature): a face of radius R gets edges
   // of at most 2 pi R / curvature_elements; 0 disables the curvature refinement.

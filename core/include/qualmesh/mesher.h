@@ -42,6 +42,14 @@ struct MeshOptions {
   // count at CharacteristicLengthMax = h, whose tetrahedra have edges of 1.25 h on average and up to 2.1 h
   // (measured on tests/data/cad/cylinder.brep at h = 2.06). max_edge_length, when set, is a hard bound besides.
   double target_edge_length = 0;
+  // Floor of the encroachment splits, in model units (Gmsh's MeshSizeMin in spirit; the CLI gives CAD inputs half
+  // their smallest size, --min-size or a 30th of --size). 0 = none, the paper's rules as written. Rules 1 and 2 do
+  // not split a subsegment shorter than twice this, nor a subfacet whose circumradius is below it, when it is merely
+  // encroached (or named by a rejected centre): near an input angle of a few hundredths of a degree (U_Joint_2.stp's
+  // surface) encroachment splitting otherwise ran down to edges of 1e-13 and elements no solver takes. A missing
+  // subsegment or subfacet is split whatever its size, so conformity is kept; the tetrahedra around a floored one
+  // may stay above the radius-edge bound (they touch an acute input angle).
+  double min_split_length = 0;
   // Largest volume allowed for a tetrahedron inside the domain, in model units cubed. 0 = no limit. Region seeds
   // (RegionSeed::max_volume) may lower it per region.
   double max_volume = 0;
@@ -134,6 +142,7 @@ struct MeshStats {
   std::size_t num_rejected_circumcenters = 0; // Rule 2 and Rule 3 centres rejected because they encroach
   std::size_t num_subfacet_flips = 0;         // 2D flips made to match a cocircular choice of the 3D triangulation
   std::size_t num_skipped_small_angle = 0;    // Rule 3 skips: shortest edge forced by an acute input angle
+  std::size_t num_skipped_floor = 0;          // Rules 1-2 skips: encroached, but below MeshOptions::min_split_length
   // Encroaching::Steiner only: it left a subsegment or subfacet missing, or its conflict zones grew too large, so
   // the input was meshed again from the start with the paper's rule (Encroaching::All); the figures are that run's.
   bool encroaching_fell_back = false;

@@ -76,6 +76,9 @@ struct SubsegmentEntry {
   Index segment;
   Index u, v;  // consecutive vertices on the segment
   bool forced = false;  // a rejected circumcentre encroaches it: split even if no vertex does
+  // Forced by a subfacet's centre (Rule 2): split whatever MeshOptions::min_split_length says, since the subfacet
+  // waits for it (a missing one would otherwise stay missing).
+  bool below_floor_too = false;
 };
 
 class Rule1Subsegments {

@@ -23,6 +23,7 @@ RefineParams RefineParams::from(const MeshOptions& options) {
   p.sq_delta = options.delta * options.delta;
   p.max_vertices = options.max_vertices;
   p.encroachment = EncroachmentPolicy(options.encroaching);
+  p.sq_min_split = options.min_split_length > 0 ? options.min_split_length * options.min_split_length : 0;
   return p;
 }
 

@@ -63,6 +63,12 @@ struct RefineParams {
   std::size_t max_vertices = 50'000'000;
   // Rules 1-2's encroachment rule.
   EncroachmentPolicy encroachment;
+  // MeshOptions::min_split_length, squared (0 = none).
+  double sq_min_split = 0;
+  // Whether an encroached, present subsegment of squared length sq_length (subfacet of squared circumradius
+  // sq_radius) is below the floor and stays.
+  bool subsegment_below_floor(double sq_length) const { return sq_length < 4 * sq_min_split; }
+  bool subfacet_below_floor(double sq_radius) const { return sq_radius < sq_min_split; }
 
   // Derives every value from the user's options (the only place that reads them for the engine).
   static RefineParams from(const MeshOptions& options);

@@ -62,7 +62,7 @@ Conflict Rule2Subfacets::conflict(MeshState& s, Index facet, const std::array<In
     if (auto uv = subsegment_towards(s, facet, abc, to_point3(center))) {
       const Index seg = subsegment_of(s, (*uv)[0], (*uv)[1]);
       if (seg != kNoIndex) {
-        s.rule1.push({seg, std::min((*uv)[0], (*uv)[1]), std::max((*uv)[0], (*uv)[1]), true});
+        s.rule1.push({seg, std::min((*uv)[0], (*uv)[1]), std::max((*uv)[0], (*uv)[1]), true, true});
         return Conflict::SplitSubsegment;
       }
     }
@@ -72,7 +72,7 @@ Conflict Rule2Subfacets::conflict(MeshState& s, Index facet, const std::array<In
   bool rejected = false;
   for (const auto& e : cand.subsegments) {
     if (strictly_encroaches(s.kpoint(e[1]), s.kpoint(e[2]), center)) {
-      s.rule1.push({e[0], e[1], e[2], true});
+      s.rule1.push({e[0], e[1], e[2], true, true});
       rejected = true;
     }
   }
@@ -83,7 +83,7 @@ Conflict Rule2Subfacets::conflict(MeshState& s, Index facet, const std::array<In
       const Index u = abc[i], v = abc[(i + 1) % 3];
       const Index seg = subsegment_of(s, u, v);
       if (seg != kNoIndex) {
-        s.rule1.push({seg, std::min(u, v), std::max(u, v), true});
+        s.rule1.push({seg, std::min(u, v), std::max(u, v), true, true});
         rejected = true;
       }
     }
@@ -128,6 +128,11 @@ void Rule2Subfacets::refine_one(MeshState& s) {
   if (!is_encroached && !e.forced) return;
   if (is_encroached && !missing && !e.forced && enc != kNoIndex && subfacet_encroacher_exempt(s, e.facet, abc, enc)) {
     ++s.stats.num_skipped_small_angle;
+    return;
+  }
+  if (!missing && s.params.sq_min_split > 0 &&
+      s.params.subfacet_below_floor(CGAL::squared_radius(s.kpoint(abc[0]), s.kpoint(abc[1]), s.kpoint(abc[2])))) {
+    ++s.stats.num_skipped_floor;  // the floor (MeshOptions::min_split_length): a present subfacet stays
     return;
   }
   if (missing) {
