@@ -470,3 +470,60 @@ TEST(Levels, BoundaryPointsProjectedOntoTheCurvedSurface) {
   EXPECT_GT(volume, prism + 0.5 * (2 * M_PI - prism));  // more than half of the way to the cylinder
   EXPECT_LT(volume, 2 * M_PI);
 }
+
+namespace {
+
+double mesh_volume(const qualmesh::TetMesh& mesh) {
+  double v = 0;
+  for (const auto& t : mesh.tets)
+    v += qualmesh::tet_signed_volume(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]);
+  return v;
+}
+
+double shortest_mesh_edge(const qualmesh::TetMesh& mesh) {
+  double sq = std::numeric_limits<double>::infinity();
+  for (const auto& t : mesh.tets)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const Point3 &a = mesh.points[t[i]], &b = mesh.points[t[j]];
+        sq = std::min(sq, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+      }
+  return std::sqrt(sq);
+}
+
+// MeshOptions::min_split_length: on a 1-degree wedge, the paper's rule splits encroached subsegments and subfacets
+// down towards its sharp edge; with the floor it keeps the present ones
+// below it, ends with fewer vertices and no edge far below the floor, and conforms exactly all the same (the
+// volume is the input's: missing elements are still split).
+TEST(Levels, SplitFloorKeepsSmallEncroachedElementsAndConformity) {
+  // A wedge: a triangular prism of height 1 over a triangle with a 1-degree corner at the origin.
+  Plc needle;
+  const double w = 10 * std::tan(M_PI / 180);
+  needle.vertices = {{0, 0, 0}, {10, 0, 0}, {10, w, 0}, {0, 0, 1}, {10, 0, 1}, {10, w, 1}};
+  for (const std::vector<Index>& loop : std::vector<std::vector<Index>>{
+           {0, 2, 1}, {3, 4, 5}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}}) {
+    qualmesh::Facet f;
+    f.polygons.push_back(loop);
+    needle.facets.push_back(f);
+  }
+  const double exact = 0.5 * 10 * w;
+  MeshOptions options;
+  options.pump = false;
+  options.improve = false;
+  options.max_edge_length = 1;  // refinement inside, whose points encroach the boundary near the sharp edge
+  const auto plain = qualmesh::mesh_plc(needle, options);
+  options.min_split_length = 0.5;
+  const auto floored = qualmesh::mesh_plc(needle, options);
+  ASSERT_EQ(plain.status, qualmesh::MeshStatus::Ok);
+  ASSERT_EQ(floored.status, qualmesh::MeshStatus::Ok);
+  EXPECT_NEAR(mesh_volume(plain.mesh), std::fabs(exact), 1e-12);
+  EXPECT_NEAR(mesh_volume(floored.mesh), std::fabs(exact), 1e-12);
+  EXPECT_EQ(plain.stats.num_skipped_floor, 0u);
+  EXPECT_GT(floored.stats.num_skipped_floor, 0u);
+  EXPECT_LT(floored.mesh.points.size(), plain.mesh.points.size());
+  std::printf("wedge: %zu vertices, shortest edge %.3g without the floor; %zu, %.3g with it (%zu kept)\n",
+              plain.mesh.points.size(), shortest_mesh_edge(plain.mesh), floored.mesh.points.size(),
+              shortest_mesh_edge(floored.mesh), floored.stats.num_skipped_floor);
+}
+
+}  // namespace
