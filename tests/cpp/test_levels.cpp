@@ -491,7 +491,7 @@ double shortest_mesh_edge(const qualmesh::TetMesh& mesh) {
   return std::sqrt(sq);
 }
 
-// MeshOptions::min_split_length: on a 1-degree wedge, the paper's rule splits encroached subsegments and subfacets
+// MeshOptions::min_split_length: on a 1-degree wedge, the relaxed rule splits encroached subsegments and subfacets
 // down towards its sharp edge; with the floor it keeps the present ones
 // below it, ends with fewer vertices and no edge far below the floor, and conforms exactly all the same (the
 // volume is the input's: missing elements are still split).
@@ -510,6 +510,7 @@ TEST(Levels, SplitFloorKeepsSmallEncroachedElementsAndConformity) {
   MeshOptions options;
   options.pump = false;
   options.improve = false;
+  options.encroaching = MeshOptions::Encroaching::Steiner;  // the floor is the relaxed rule's
   options.max_edge_length = 1;  // refinement inside, whose points encroach the boundary near the sharp edge
   const auto plain = qualmesh::mesh_plc(needle, options);
   options.min_split_length = 0.5;
@@ -521,6 +522,10 @@ TEST(Levels, SplitFloorKeepsSmallEncroachedElementsAndConformity) {
   EXPECT_EQ(plain.stats.num_skipped_floor, 0u);
   EXPECT_GT(floored.stats.num_skipped_floor, 0u);
   EXPECT_LT(floored.mesh.points.size(), plain.mesh.points.size());
+  // The paper's rule stays as written, floor or not.
+  options.encroaching = MeshOptions::Encroaching::All;
+  const auto paper = qualmesh::mesh_plc(needle, options);
+  EXPECT_EQ(paper.stats.num_skipped_floor, 0u);
   std::printf("wedge: %zu vertices, shortest edge %.3g without the floor; %zu, %.3g with it (%zu kept)\n",
               plain.mesh.points.size(), shortest_mesh_edge(plain.mesh), floored.mesh.points.size(),
               shortest_mesh_edge(floored.mesh), floored.stats.num_skipped_floor);

@@ -42,11 +42,13 @@ struct MeshOptions {
   // count at CharacteristicLengthMax = h, whose tetrahedra have edges of 1.25 h on average and up to 2.1 h
   // (measured on tests/data/cad/cylinder.brep at h = 2.06). max_edge_length, when set, is a hard bound besides.
   double target_edge_length = 0;
-  // Floor of the encroachment splits, in model units (Gmsh's MeshSizeMin in spirit; the CLI gives CAD inputs half
-  // their smallest size, --min-size or a 30th of --size). 0 = none, the paper's rules as written. Rules 1 and 2 do
+  // Floor of the encroachment splits under Encroaching::Steiner, in model units (Gmsh's MeshSizeMin in spirit; the
+  // CLI gives CAD inputs half their smallest size, --min-size or a 30th of --size). 0 = none, and ignored under the
+  // paper's rule (Encroaching::All, the fallback included), which stays as written. Rules 1 and 2 do
   // not split a subsegment shorter than twice this, nor a subfacet whose circumradius is below it, when it is merely
-  // encroached (or named by a rejected centre): near an input angle of a few hundredths of a degree (U_Joint_2.stp's
-  // surface) encroachment splitting otherwise ran down to edges of 1e-13 and elements no solver takes. A missing
+  // encroached (or named by a rejected centre): near input angles of a few hundredths of a degree (U_Joint_2.stp's
+  // surface has them) encroachment splitting otherwise runs down towards rounding (1.8e-13 edges in its paper's-rule
+  // mesh, an element ccx refused); on wrenchnut.stp at its default size it saves a quarter of the nodes. A missing
   // subsegment or subfacet is split whatever its size, so conformity is kept; the tetrahedra around a floored one
   // may stay above the radius-edge bound (they touch an acute input angle).
   double min_split_length = 0;
