@@ -65,7 +65,6 @@ CadLocalSize parse_local_size(const std::string& text) {
   return local;
 }
 
-
 // A finite number above `lo` (or at least `lo` when closed), for the size options.
 CLI::Validator finite_above(double lo, bool closed, const std::string& what) {
   return CLI::Validator(

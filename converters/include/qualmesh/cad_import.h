@@ -28,11 +28,11 @@
 
 namespace qualmesh {
 
-// A target edge length on one named CAD entity (FreeCAD's names: Face<id>, Edge<id>, Solid<id>, numbered as in
-// the PLC's markers and the output groups).
 // CadOptions::min_size's default, relative to the target size.
 inline constexpr double kDefaultMinSizeFactor = 1.0 / 30;
 
+// A target edge length on one named CAD entity (FreeCAD's names: Face<id>, Edge<id>, Solid<id>, numbered as in
+// the PLC's markers and the output groups).
 struct CadLocalSize {
   enum class Kind { Face, Edge, Solid };
   Kind kind = Kind::Face;

@@ -73,8 +73,8 @@ struct NodeMoveReport {
 
 // Moves each node towards its target, in the order given, keeping every element that has the node acceptable
 // (NodeMoveOptions): the full move when that is acceptable, else the full move dragging the interior nodes of the
-// elements it spoils, else the largest of 3/4, 1/2, 1/4 of it that is acceptable, else none. An element that was unacceptable before a move only has to get no worse.
-// Mutates mesh.points only.
+// elements it spoils, else the largest of 3/4, 1/2, 1/4 of it that is acceptable, else none. An element that was
+// unacceptable before a move only has to get no worse. Mutates mesh.points only.
 NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& moves,
                                   const NodeMoveOptions& options = {});
 
@@ -96,6 +96,5 @@ std::size_t remove_flat_boundary_tets(TetMesh& mesh, double flat = 1e-6);
 // cap's two boundary faces meet at a corner whose three edges all lie on the face, so no interior node can keep its
 // Jacobian positive once they follow the surface.
 std::size_t remove_boundary_caps(TetMesh& mesh, const std::function<bool(std::size_t)>& select);
-
 
 }  // namespace qualmesh
