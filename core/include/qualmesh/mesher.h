@@ -67,8 +67,9 @@ struct MeshOptions {
     // and so is a segment vertex in the diametral ball of a subsegment of a segment sharing an input vertex with its
     // own (the acute corners of every input triangle). Conformity stays exact and Rule 3's bound holds as before;
     // triangulated surfaces need far fewer vertices (no pumping: fandisk.off 7424 instead of 28003, anchor.off 5360
-    // instead of 18411). Where it would leave an element missing or its conflict zones grow large, the input is
-    // meshed again with the paper's rule (MeshStats::encroaching_fell_back; bottle.brep, part.step, U_Joint_2.stp).
+    // instead of 18411). Where it would leave an element missing, or (with no min_split_length) its conflict zones
+    // grow large, the input is meshed again with the paper's rule (MeshStats::encroaching_fell_back; bottle.brep's
+    // tessellation).
     Steiner,
   };
   Encroaching encroaching = Encroaching::All;
