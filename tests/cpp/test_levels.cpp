@@ -492,9 +492,9 @@ double shortest_mesh_edge(const qualmesh::TetMesh& mesh) {
 }
 
 // MeshOptions::min_split_length: on a 1-degree wedge, the relaxed rule splits encroached subsegments and subfacets
-// down towards its sharp edge; with the floor it keeps the present ones
-// below it, ends with fewer vertices and no edge far below the floor, and conforms exactly all the same (the
-// volume is the input's: missing elements are still split).
+// down towards its sharp edge; with the floor it keeps the present ones below it and ends with fewer vertices, and
+// conforms exactly all the same (the volume is the input's: missing elements are still split). The shortest edges
+// of both meshes are printed.
 TEST(Levels, SplitFloorKeepsSmallEncroachedElementsAndConformity) {
   // A wedge: a triangular prism of height 1 over a triangle with a 1-degree corner at the origin.
   Plc needle;
