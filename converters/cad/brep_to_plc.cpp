@@ -12,10 +12,9 @@
 // chain, and the seam of a periodic face closes on itself. A planar face becomes one facet whose polygons are its
 // wires (exact up to the points where a neighbouring curved face's edge is discretised), plus its interior nodes in
 // the sized way; a curved face becomes the triangles of its mesh, all with the face's number as marker.
+#include <optional>
+
 #include <BRepBndLib.hxx>
-#include <BRepBuilderAPI_MakeVertex.hxx>
-#include <BRepExtrema_DistShapeShape.hxx>
-#include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepAdaptor_Curve.hxx>
@@ -27,7 +26,6 @@
 #include <GCPnts_AbscissaPoint.hxx>
 #include <GProp_GProps.hxx>
 #include <IMeshTools_Parameters.hxx>
-#include <IntCurvesFace_ShapeIntersector.hxx>
 #include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
 #include <Standard_Failure.hxx>
@@ -38,7 +36,6 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
-#include <gp_Lin.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -647,73 +644,17 @@ class PlcBuilder {
     }
   }
 
-  // A seed strictly inside each solid: from the centroid of one of the solid's larger tessellation triangles, go
-  // inward half-way to the next hit of the inward ray with the solid; keep the first such point that OpenCASCADE
-  // classifies IN and that lies well beyond the deflection from both walls.
+  // A seed strictly inside each solid (region_seed.cpp), keeping the margin from every wall.
   void add_regions() {
+    const double margin = region_margin_ > 0 ? region_margin_ : 2 * model_.summary.deflection_used;
     for (int s = 1; s <= solids_.Extent(); ++s) {
-      const TopoDS_Shape& solid = solids_(s);
-      struct Candidate {
-        double area;
-        gp_Pnt centroid;
-        gp_Dir inward;
-      };
-      std::vector<Candidate> candidates;
-      for (TopExp_Explorer it(solid, TopAbs_FACE); it.More(); it.Next()) {
-        const TopoDS_Face& face = TopoDS::Face(it.Current());
-        TopLoc_Location location;
-        Handle(Poly_Triangulation) triangulation = BRep_Tool::Triangulation(face, location);
-        if (triangulation.IsNull()) continue;
-        const bool flip = face.Orientation() == TopAbs_REVERSED;
-        for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
-          int a, b, c;
-          triangulation->Triangle(t).Get(a, b, c);
-          gp_Pnt pa = triangulation->Node(a).Transformed(location), pb = triangulation->Node(b).Transformed(location),
-                 pc = triangulation->Node(c).Transformed(location);
-          gp_Vec normal = gp_Vec(pa, pb).Crossed(gp_Vec(pa, pc));
-          double area = 0.5 * normal.Magnitude();
-          if (area <= 0) continue;
-          if (!flip) normal.Reverse();  // outward normal of a forward face is the surface normal; go inward
-          gp_Pnt centroid((pa.XYZ() + pb.XYZ() + pc.XYZ()) / 3.0);
-          candidates.push_back({area, centroid, gp_Dir(normal)});
-        }
-      }
-      std::stable_sort(candidates.begin(), candidates.end(),
-                       [](const Candidate& x, const Candidate& y) { return x.area > y.area; });
-      IntCurvesFace_ShapeIntersector intersector;
-      intersector.Load(solid, 1e-9 * diagonal_);
-      BRepClass3d_SolidClassifier classifier(solid);
-      bool found = false;
-      const double margin = region_margin_ > 0 ? region_margin_ : 2 * model_.summary.deflection_used;
-      const std::size_t tries = std::min<std::size_t>(candidates.size(), 200);
-      for (std::size_t k = 0; k < tries && !found; ++k) {
-        const Candidate& c = candidates[k];
-        gp_Pnt start = c.centroid.Translated(gp_Vec(c.inward) * 1e-7 * diagonal_);
-        intersector.Perform(gp_Lin(start, c.inward), 0, 2 * diagonal_);
-        if (!intersector.IsDone() || intersector.NbPnt() == 0) continue;
-        double nearest = std::numeric_limits<double>::infinity();
-        for (int i = 1; i <= intersector.NbPnt(); ++i) nearest = std::min(nearest, intersector.WParameter(i));
-        if (!(nearest > 2 * margin)) continue;
-        gp_Pnt seed = start.Translated(gp_Vec(c.inward) * (0.5 * nearest));
-        classifier.Perform(seed, 1e-9 * diagonal_);
-        if (classifier.State() != TopAbs_IN) continue;
-        // The ray measured one direction; the seed keeps the margin from every wall (the solid's shells: a solid
-        // itself is at distance 0 from a point inside it).
-        const TopoDS_Vertex point = BRepBuilderAPI_MakeVertex(seed).Vertex();
-        bool clear = true;
-        for (TopExp_Explorer shells(solid, TopAbs_SHELL); shells.More() && clear; shells.Next()) {
-          BRepExtrema_DistShapeShape distance(point, shells.Current());
-          clear = distance.IsDone() && distance.Value() > margin;
-        }
-        if (!clear) continue;
-        model_.plc.regions.push_back({to_point(seed), s, 0});
-        found = true;
-      }
-      if (!found)
+      const std::optional<Point3> seed = region_seed(solids_(s), margin, diagonal_);
+      if (!seed)
         throw InputError(ErrorCode::DegenerateFacet,
                          "found no point strictly inside Solid" + std::to_string(s) +
                              " (too thin for the tessellation deflection?)",
                          file_);
+      model_.plc.regions.push_back({*seed, s, 0});
     }
   }
 
