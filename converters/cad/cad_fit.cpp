@@ -8,7 +8,9 @@
 // ShapeAnalysis_Curve::Project within the edge's parameter range for edges. A node within the chordal deflection of
 // its face moves at most about that far, but a move is always checked against the elements around the node
 // (move_nodes_checked, second_order.h): relaxed part of the way, or not made, rather than inverting an element.
+#include <BRepBndLib.hxx>
 #include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <GeomAdaptor_Surface.hxx>
 #include <Geom_Curve.hxx>
@@ -17,12 +19,16 @@
 #include <ShapeAnalysis_Surface.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <gp_Pnt2d.hxx>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -55,6 +61,21 @@ class Projector {
   explicit Projector(const TopoDS_Shape& solids) {
     TopExp::MapShapes(solids, TopAbs_FACE, faces_);
     TopExp::MapShapes(solids, TopAbs_EDGE, edges_);
+    TopExp::MapShapesAndAncestors(solids, TopAbs_EDGE, TopAbs_FACE, edge_faces_);
+  }
+
+  // Whether FreeCAD's geometric node search can find a node at p on CAD face f / edge e (on each face of the
+  // edge): FemMesh::getNodesByFace (0.20) looks only inside BRepBndLib::Add(face, box, false) enlarged by the face's
+  // tolerance, and that box can be tighter than the surface (part.step's Face23 bulges 0.003 mm out of it).
+  bool face_findable(int f, const Point3& p) {
+    const FaceData* data = face(f);
+    return !data || !data->search_box.IsOut(gp_Pnt(p[0], p[1], p[2]));
+  }
+  bool edge_findable(int e, const Point3& p) {
+    if (e < 1 || e > edge_faces_.Extent()) return true;
+    for (const TopoDS_Shape& f : edge_faces_.FindFromIndex(e))
+      if (!face_findable(faces_.FindIndex(f), p)) return false;
+    return true;
   }
 
   // Whether CAD face f / edge e is curved (a plane or a line needs no projection of points on its facets).
@@ -97,6 +118,7 @@ class Projector {
     gp_Trsf to_local, to_global;
     double precision = 1e-9;
     bool planar = false;
+    Bnd_Box search_box;  // face_findable
   };
   struct EdgeData {
     Handle(Geom_Curve) curve;
@@ -122,6 +144,8 @@ class Projector {
           data->to_local = location.Transformation().Inverted();
           data->precision = std::max(1e-12, 1e-3 * BRep_Tool::Tolerance(face));
           data->planar = GeomAdaptor_Surface(surface).GetType() == GeomAbs_Plane;
+          BRepBndLib::Add(face, data->search_box, Standard_False);
+          data->search_box.Enlarge(BRep_Tool::Tolerance(face));
         }
       }
       it = face_data_.emplace(f, std::move(data)).first;
@@ -156,6 +180,7 @@ class Projector {
   }
 
   TopTools_IndexedMapOfShape faces_, edges_;
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces_;
   std::map<int, std::unique_ptr<FaceData>> face_data_;
   std::map<int, std::unique_ptr<EdgeData>> edge_data_;
 };
@@ -164,11 +189,17 @@ double distance(const Point3& a, const Point3& b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
+// Where along its edge a mid node may go instead (NodeMove::alternatives): the projections of these points of the
+// chord. A 10-node element needs its mid node on the surface, not at the projection of the chord's midpoint, and a
+// point nearer one end unfolds the curved face of a thin triangle whose midpoint projection folds it.
+constexpr double kAlongEdge[] = {0.4, 0.6, 0.3, 0.7};
+
 // Targets for the nodes listed in on_edge / on_face (by node index): an edge wins over a face; a node on several
-// edges (a CAD vertex) or several faces and no edge stays.
+// edges (a CAD vertex) or several faces and no edge stays. `ends` (mid nodes only, indexed from first_node) gives
+// each node's edge, for the alternatives along it.
 std::vector<NodeMove> targets(Projector& projector, const TetMesh& mesh, const std::vector<int>& on_edge,
                               const std::vector<int>& on_face, Index first_node, std::size_t& num_fixed,
-                              double* max_offset) {
+                              double* max_offset, const std::vector<std::array<Index, 2>>* ends = nullptr) {
   BoundingBox box;
   for (const Point3& p : mesh.points) box.add(p);
   const double still = box.empty() ? 0 : 1e-12 * distance(box.min, box.max);
@@ -185,7 +216,26 @@ std::vector<NodeMove> targets(Projector& projector, const TetMesh& mesh, const s
     if (!found) continue;
     if (distance(target, mesh.points[v]) <= still) continue;  // on it already (to rounding): stays exact
     if (max_offset) *max_offset = std::max(*max_offset, distance(target, mesh.points[v]));
-    moves.push_back({v, target});
+    moves.push_back({v, target, {}});
+    if (!ends) continue;
+    const Point3 &a = mesh.points[(*ends)[v - first_node][0]], &b = mesh.points[(*ends)[v - first_node][1]];
+    for (double t : kAlongEdge) {
+      const Point3 p{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+      Point3 q{};
+      if (on_edge[v] > 0 ? projector.onto_edge(on_edge[v], p, q) : projector.onto_face(on_face[v], p, q))
+        moves.back().alternatives.push_back(q);
+    }
+    // A place FreeCAD's node search cannot see comes after those it can.
+    const auto findable = [&](const Point3& q) {
+      return on_edge[v] > 0 ? projector.edge_findable(on_edge[v], q) : projector.face_findable(on_face[v], q);
+    };
+    NodeMove& move = moves.back();
+    if (findable(move.target)) continue;
+    std::vector<Point3> all{move.target};
+    all.insert(all.end(), move.alternatives.begin(), move.alternatives.end());
+    std::stable_partition(all.begin(), all.end(), findable);
+    move.target = all.front();
+    move.alternatives.assign(all.begin() + 1, all.end());
   }
   return moves;
 }
@@ -250,6 +300,11 @@ CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options,
     // one CAD face (its boundary diagonal flips, the volume changes by the cap's), and the mid nodes are placed
     // again, for a few rounds. (Caps across a CAD edge stay: splitting their free edge, tried, left as many nodes
     // part way and worse tetrahedra.)
+    // A last round, when caps are all that could be removed and some mid nodes still fall short, asks the elements
+    // only for NodeMoveOptions::last_resort_jacobian_ratio.
+    NodeMoveOptions strict = fit_options.moves;
+    strict.last_resort_jacobian_ratio = 0;
+    bool last = false;
     TetMesh linear;  // the linear mesh the rounds start from (make_second_order keeps the tets' order)
     for (int round = 0;; ++round) {
       if (round > 0) mesh = linear;
@@ -261,17 +316,24 @@ CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options,
       for (std::size_t e = 0; e < mesh.edges.size(); ++e) note(on_edge, mesh.edge_mid[e], mesh.edge_marker[e]);
       for (std::size_t f = 0; f < mesh.faces.size(); ++f)
         for (Index v : mesh.face_mid[f]) note(on_face, v, mid_labels[f]);
+      std::vector<std::array<Index, 2>> ends(mesh.points.size() - first_mid);
+      for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        for (int k = 0; k < 6; ++k)
+          ends[mesh.tet_mid[t][k] - first_mid] = {mesh.tets[t][kTetEdges[k][0]], mesh.tets[t][kTetEdges[k][1]]};
       std::size_t unused = 0;
-      const std::vector<NodeMove> moves = targets(projector, mesh, on_edge, on_face, first_mid, unused, nullptr);
+      const std::vector<NodeMove> moves = targets(projector, mesh, on_edge, on_face, first_mid, unused, nullptr, &ends);
       report.num_mid_targets = moves.size();
-      report.mids = move_nodes_checked(mesh, moves, fit_options.moves);
-      if (report.mids.num_full == report.mids.num_requested || round == kMaxCapRounds) break;
+      report.mids = move_nodes_checked(mesh, moves, last ? fit_options.moves : strict);
+      if (report.mids.num_full == report.mids.num_requested || last) break;
       const std::vector<std::size_t>& blocking = report.mids.blocking_elements;
-      const std::size_t removed = remove_boundary_caps(linear, [&](std::size_t t) {
+      const std::size_t removed = round == kMaxCapRounds ? 0 : remove_boundary_caps(linear, [&](std::size_t t) {
         return std::binary_search(blocking.begin(), blocking.end(), t);
       });
-      if (removed == 0) break;
       report.num_curving_caps_removed += removed;
+      if (removed == 0) {
+        if (fit_options.moves.last_resort_jacobian_ratio <= 0) break;
+        last = true;
+      }
     }
   } catch (const Standard_Failure& failure) {
     throw InputError(ErrorCode::Parse,

@@ -47,6 +47,9 @@ double element_measure(const TetMesh& mesh, std::size_t t) {
   return mesh.is_second_order() ? tet10_jacobian(mesh, t).ratio() : signed_volume6(mesh, t);
 }
 
+// Rounds of NodeMoveOptions::optimise_interior's search for one move.
+constexpr int kMaxOptimiseRounds = 200;
+
 }  // namespace
 
 void make_second_order(TetMesh& mesh) {
@@ -81,16 +84,21 @@ void make_second_order(TetMesh& mesh) {
 
 namespace {
 
-// The Jacobian determinant at the ten nodes of the element with these corners and mid nodes (tet_mid order),
-// all given relative to corner 0 (far from the origin, the sums below would otherwise cancel digits that a small or
-// nearly flat element needs).
+// The Jacobian determinant of the element with these corners and mid nodes (tet_mid order), all given relative to
+// corner 0 (far from the origin, the sums below would otherwise cancel digits that a small or nearly flat element
+// needs), at its ten nodes, the four integration points of the 4-point rule (CalculiX's C3D10 stops with
+// "nonpositive jacobian" when it is not positive there, whatever it is at the nodes) and the centroid.
 Tet10Jacobian jacobian_of(const Point3 (&corners)[4], const Point3 (&mids)[6]) {
   const auto corner = [&](int i) -> const Point3& { return corners[i]; };
   const auto mid = [&](int i, int j) -> const Point3& { return mids[mid_slot(i, j)]; };
-  // Evaluation points: the corners, then the edge midpoints.
-  double L[10][4] = {};
+  // Evaluation points: the corners, the edge midpoints, the integration points, the centroid.
+  constexpr double kGaussA = 0.1381966011250105, kGaussB = 0.5854101966249685;  // (5 - sqrt 5) / 20, (5 + 3 sqrt 5) / 20
+  double L[15][4] = {};
   for (int i = 0; i < 4; ++i) L[i][i] = 1;
   for (int k = 0; k < 6; ++k) L[4 + k][kTetEdges[k][0]] = L[4 + k][kTetEdges[k][1]] = 0.5;
+  for (int i = 0; i < 4; ++i)
+    for (int a = 0; a < 4; ++a) L[10 + i][a] = a == i ? kGaussB : kGaussA;
+  for (int a = 0; a < 4; ++a) L[14][a] = 0.25;
   Tet10Jacobian result;
   result.min_det = INFINITY;
   result.max_det = -INFINITY;
@@ -171,12 +179,14 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
       for (Index v : mesh.tet_mid[t]) elements_of[v].push_back(static_cast<std::uint32_t>(t));
   }
   const bool quadratic = mesh.is_second_order();
-  const auto acceptable = [&](std::size_t t, double before) {
-    const double now = element_measure(mesh, t);
-    const double bar = quadratic ? options.min_jacobian_ratio : options.min_volume_fraction * before;
-    if (before <= 0 || (quadratic && before < options.min_jacobian_ratio)) return now >= before;  // no worse
-    return now > 0 && now >= bar;
+  // The Jacobian ratio the current attempt asks for: min_jacobian_ratio, or last_resort_jacobian_ratio last.
+  double ratio_bar = options.min_jacobian_ratio;
+  // What an element whose measure was `before` the move must keep: no worse when it was below the bar already.
+  const auto bar_of = [&](double before) {
+    if (before <= 0 || (quadratic && before < ratio_bar)) return before;
+    return quadratic ? ratio_bar : options.min_volume_fraction * before;  // > 0
   };
+  const auto acceptable = [&](std::size_t t, double before) { return element_measure(mesh, t) >= bar_of(before); };
   // Interior nodes (on no boundary or internal face): the ones a move may drag along.
   std::vector<std::uint8_t> on_face(mesh.points.size(), 0);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
@@ -212,28 +222,94 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
     for (std::size_t i = 0; i < nodes.size(); ++i) mesh.points[nodes[i]] = saved[i];
     return false;
   };
+  // Puts group[0] at its start + `shift` and searches positions of the interior nodes group[1..] that make every
+  // element around them acceptable: a compass search (steps along the axes, halved when none helps) that maximises
+  // the worst element's margin over its bar. It stops as soon as every element is acceptable; on failure everything
+  // is put back exactly.
+  const auto optimise_interior = [&](const std::vector<Index>& group, const Point3& shift) {
+    std::vector<std::uint32_t> elements;
+    for (Index v : group) elements.insert(elements.end(), elements_of[v].begin(), elements_of[v].end());
+    std::sort(elements.begin(), elements.end());
+    elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
+    std::vector<double> bar(elements.size()), margin(elements.size());
+    for (std::size_t i = 0; i < elements.size(); ++i) bar[i] = bar_of(element_measure(mesh, elements[i]));
+    const auto local = [&](std::uint32_t t) {
+      return static_cast<std::size_t>(std::lower_bound(elements.begin(), elements.end(), t) - elements.begin());
+    };
+    std::vector<Point3> saved;
+    for (Index v : group) saved.push_back(mesh.points[v]);
+    for (int c = 0; c < 3; ++c) mesh.points[group[0]][c] += shift[c];
+    for (std::size_t i = 0; i < elements.size(); ++i) margin[i] = element_measure(mesh, elements[i]) - bar[i];
+    const auto worst = [&] { return *std::min_element(margin.begin(), margin.end()); };
+    double best = worst();
+    double step = std::sqrt(shift[0] * shift[0] + shift[1] * shift[1] + shift[2] * shift[2]);
+    const double finest = 1e-3 * step;
+    std::vector<double> trial;
+    for (int round = 0; best < 0 && step > finest && round < kMaxOptimiseRounds; ++round) {
+      bool improved = false;
+      for (std::size_t k = 1; k < group.size(); ++k) {
+        const Index v = group[k];
+        for (int d = 0; d < 6; ++d) {
+          const Point3 old = mesh.points[v];
+          mesh.points[v][d / 2] += d % 2 ? -step : step;
+          trial = margin;
+          for (std::uint32_t t : elements_of[v]) trial[local(t)] = element_measure(mesh, t) - bar[local(t)];
+          const double now = *std::min_element(trial.begin(), trial.end());
+          if (now > best) {
+            best = now;
+            margin.swap(trial);
+            improved = true;
+          } else {
+            mesh.points[v] = old;
+          }
+        }
+      }
+      if (!improved) step *= 0.5;
+    }
+    if (best >= 0) return true;
+    for (std::size_t k = 0; k < group.size(); ++k) mesh.points[group[k]] = saved[k];
+    return false;
+  };
+  // The full move of `node` by `shift`, alone, dragging the interior nodes of the elements it spoils, or placing
+  // them by the search; 0 when none is acceptable (`blocking` then lists the elements the move alone spoiled).
+  enum Full { kNot, kAlone, kDragged, kSearched };
+  const auto full_move = [&](Index node, const Point3& shift, std::vector<std::size_t>& blocking) {
+    if (try_shift({node}, shift)) return kAlone;
+    blocking = spoiled;
+    if (!options.drag_interior) return kNot;
+    std::vector<Index> group{node};
+    for (std::size_t t : blocking)
+      for (Index v : element_nodes(t))
+        if (!on_face[v] && v != node) group.push_back(v);
+    std::sort(group.begin() + 1, group.end());
+    group.erase(std::unique(group.begin() + 1, group.end()), group.end());
+    if (group.size() == 1) return kNot;
+    if (try_shift(group, shift)) return kDragged;
+    if (options.optimise_interior && optimise_interior(group, shift)) return kSearched;
+    return kNot;
+  };
+  const bool last_resort = quadratic && options.last_resort_jacobian_ratio > 0 &&
+                           options.last_resort_jacobian_ratio < options.min_jacobian_ratio;
   for (const NodeMove& move : moves) {
     const Point3 start = mesh.points[move.node];
     const Point3 full{move.target[0] - start[0], move.target[1] - start[1], move.target[2] - start[2]};
-    double done = 0;
-    std::vector<std::size_t> blocking;
-    if (try_shift({move.node}, full)) {
-      done = 1;
-    } else if (options.drag_interior) {
-      blocking = spoiled;
-      std::vector<Index> group{move.node};
-      for (std::size_t t : spoiled)
-        for (Index v : element_nodes(t))
-          if (!on_face[v] && v != move.node) group.push_back(v);
-      std::sort(group.begin() + 1, group.end());
-      group.erase(std::unique(group.begin() + 1, group.end()), group.end());
-      if (group.size() > 1 && try_shift(group, full)) {
-        done = 1;
-        ++report.num_dragged;
+    std::vector<std::size_t> blocking, unused;
+    // The target, then each alternative, at min_jacobian_ratio; then all of them again at the last resort's ratio.
+    std::vector<Point3> shifts{full};
+    for (const Point3& q : move.alternatives) shifts.push_back({q[0] - start[0], q[1] - start[1], q[2] - start[2]});
+    Full how = kNot;
+    for (int pass = 0; pass < (last_resort ? 2 : 1) && how == kNot; ++pass) {
+      ratio_bar = pass == 0 ? options.min_jacobian_ratio : options.last_resort_jacobian_ratio;
+      for (std::size_t k = 0; k < shifts.size() && how == kNot; ++k) {
+        how = full_move(move.node, shifts[k], pass == 0 && k == 0 ? blocking : unused);
+        if (how != kNot && k > 0) ++report.num_alternative;
       }
-    } else {
-      blocking = spoiled;
+      if (how != kNot && pass == 1) ++report.num_last_resort;
     }
+    ratio_bar = options.min_jacobian_ratio;
+    if (how == kDragged) ++report.num_dragged;
+    if (how == kSearched) ++report.num_optimised;
+    double done = how == kNot ? 0 : 1;
     if (done < 1) report.blocking_elements.insert(report.blocking_elements.end(), blocking.begin(), blocking.end());
     for (double fraction : {0.75, 0.5, 0.25}) {
       if (done > 0) break;
@@ -243,7 +319,7 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
     else if (done > 0) ++report.num_partial;
     else ++report.num_refused;
     const Point3& p = mesh.points[move.node];
-    const double left = std::sqrt((move.target[0] - p[0]) * (move.target[0] - p[0]) +
+    const double left = done == 1 ? 0 : std::sqrt((move.target[0] - p[0]) * (move.target[0] - p[0]) +
                                   (move.target[1] - p[1]) * (move.target[1] - p[1]) +
                                   (move.target[2] - p[2]) * (move.target[2] - p[2]));
     report.max_distance_left = std::max(report.max_distance_left, left);

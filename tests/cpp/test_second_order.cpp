@@ -185,8 +185,10 @@ void expect_fitted_onto_cad(const std::string& file, bool second_order) {
   EXPECT_LE(off, not_full) << "worst distance " << worst;
   EXPECT_EQ(report.corners.num_bad_elements, 0u);
   if (second_order) {
-    EXPECT_EQ(report.mids.num_bad_elements, 0u);
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) EXPECT_GT(tet10_jacobian(mesh, t).min_det, 0) << t;
+    // Only a move at the last resort's ratio leaves an element below min_jacobian_ratio, and none below its own.
+    EXPECT_LE(report.mids.num_bad_elements, report.mids.num_last_resort);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+      EXPECT_GE(tet10_jacobian(mesh, t).ratio(), fit.moves.last_resort_jacobian_ratio) << t;
   }
 }
 
@@ -385,6 +387,95 @@ TEST(BoundaryCaps, BlockingElementsAreReported) {
   EXPECT_TRUE(ok.blocking_elements.empty());
   const NodeMoveReport big = move_nodes_checked(m, {{m.tet_mid[0][0], {0.5, 5, 5}}});
   EXPECT_EQ(big.blocking_elements, (std::vector<std::size_t>{0}));
+}
+
+}  // namespace
+}  // namespace qualmesh
+
+namespace qualmesh {
+namespace {
+
+double signed_six_volume(const TetMesh& m, std::size_t t) {
+  const auto& v = m.tets[t];
+  const Point3 &a = m.points[v[0]], &b = m.points[v[1]], &c = m.points[v[2]], &d = m.points[v[3]];
+  return (b[0] - a[0]) * ((c[1] - a[1]) * (d[2] - a[2]) - (c[2] - a[2]) * (d[1] - a[1])) -
+         (b[1] - a[1]) * ((c[0] - a[0]) * (d[2] - a[2]) - (c[2] - a[2]) * (d[0] - a[0])) +
+         (b[2] - a[2]) * ((c[0] - a[0]) * (d[1] - a[1]) - (c[1] - a[1]) * (d[0] - a[0]));
+}
+
+// Node 0 lifted to z = 0.5 flattens tet A = (0, 1, 2, 3) unless the interior node 3 rises above the plane through
+// the new node 0 and nodes 1, 2; dragged by the same 0.5 it would cross the ceiling of tet B = (3, 5, 6, 7) at
+// z = 0.5. Only a place found by the search (NodeMoveOptions::optimise_interior) between the two keeps both.
+TEST(SecondOrder, TheSearchPlacesAnInteriorNodeWhereDraggingItFails) {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, 0.2}, {9, 9, 9}, {-1, -1, 0.5}, {2, -1, 0.5}, {-1, 2, 0.5}};
+  m.tets = {{0, 1, 2, 3}, {3, 5, 6, 7}};
+  m.faces = {{0, 2, 1}, {5, 6, 7}};  // node 3 is the only interior node (node 4 belongs to nothing)
+  const std::vector<double> before{signed_six_volume(m, 0), signed_six_volume(m, 1)};
+  NodeMoveOptions no_search;
+  no_search.optimise_interior = false;
+  TetMesh copy = m;
+  const NodeMoveReport without = move_nodes_checked(copy, {{0, {0, 0, 0.5}, {}}}, no_search);
+  EXPECT_EQ(without.num_full, 0u);
+  const NodeMoveReport r = move_nodes_checked(m, {{0, {0, 0, 0.5}, {}}});
+  EXPECT_EQ(r.num_full, 1u);
+  EXPECT_EQ(r.num_optimised, 1u);
+  EXPECT_EQ(r.num_dragged, 0u);
+  EXPECT_EQ(m.points[0], (Point3{0, 0, 0.5}));
+  EXPECT_NE(m.points[3], (Point3{0.3, 0.3, 0.2}));
+  for (std::size_t t = 0; t < 2; ++t)
+    EXPECT_GE(signed_six_volume(m, t), NodeMoveOptions{}.min_volume_fraction * before[t]) << t;
+  EXPECT_EQ(r.num_bad_elements, 0u);
+}
+
+// A target no element allows is passed over for the first alternative that works (NodeMove::alternatives), and the
+// node counts as moved in full: it is on its face or edge, where the alternatives are.
+TEST(SecondOrder, AnAlternativeIsTakenWhenTheTargetIsRefused) {
+  TetMesh b;
+  b.points = {{0.1, 0.2, 0.3}, {1.1, 0.2, 0.3}, {0.1, 1.2, 0.3}, {0.2, 0.3, 0.6}};
+  b.tets = {{0, 1, 2, 3}};
+  b.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  const NodeMoveReport r =
+      move_nodes_checked(b, {{0, {0.1, 0.2, 5.0}, {{0.1, 0.2, 4.0}, {0.0, 0.1, 0.3}, {0.05, 0.15, 0.3}}}});
+  EXPECT_EQ(r.num_full, 1u);
+  EXPECT_EQ(r.num_alternative, 1u);
+  EXPECT_EQ(b.points[0], (Point3{0.0, 0.1, 0.3}));  // the first acceptable one, in order
+  EXPECT_EQ(r.max_distance_left, 0);
+  EXPECT_GT(signed_six_volume(b, 0), 0);
+}
+
+// A mid node whose full move leaves its element's Jacobian ratio between last_resort_jacobian_ratio and
+// min_jacobian_ratio is relaxed part of the way without the last resort, and made in full with it.
+TEST(SecondOrder, TheLastResortRatioPutsTheNodeOnItsTargetWithAValidElement) {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.tets = {{0, 1, 2, 3}};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};  // all on the boundary: nothing to drag along
+  make_second_order(m);
+  const Index mid = m.tet_mid[0][0];  // edge (0, 1), pushed into the element along (0, 1, 1)
+  const auto ratio_at = [&](double s) {
+    TetMesh c = m;
+    c.points[mid] = {0.5, s, s};
+    return tet10_jacobian(c, 0).ratio();
+  };
+  double lo = 0, hi = 1;  // ratio_at(lo) >= 0.05 > ratio_at(hi)
+  ASSERT_LT(ratio_at(hi), 0.05);
+  for (int i = 0; i < 60; ++i) (ratio_at(0.5 * (lo + hi)) >= 0.05 ? lo : hi) = 0.5 * (lo + hi);
+  const Point3 target{0.5, lo, lo};
+  ASSERT_GT(ratio_at(lo), 0.04);
+  ASSERT_LT(ratio_at(lo), 0.1);
+  NodeMoveOptions strict;
+  strict.last_resort_jacobian_ratio = 0;
+  TetMesh copy = m;
+  const NodeMoveReport relaxed = move_nodes_checked(copy, {{mid, target, {}}}, strict);
+  EXPECT_EQ(relaxed.num_full, 0u);
+  EXPECT_GE(tet10_jacobian(copy, 0).ratio(), strict.min_jacobian_ratio);
+  const NodeMoveReport r = move_nodes_checked(m, {{mid, target, {}}});
+  EXPECT_EQ(r.num_full, 1u);
+  EXPECT_EQ(r.num_last_resort, 1u);
+  EXPECT_EQ(m.points[mid], target);
+  EXPECT_GE(tet10_jacobian(m, 0).ratio(), NodeMoveOptions{}.last_resort_jacobian_ratio);
+  EXPECT_EQ(r.num_bad_elements, 1u);  // below min_jacobian_ratio, and counted so
 }
 
 }  // namespace

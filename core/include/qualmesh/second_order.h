@@ -5,8 +5,9 @@
 // The 10-node tetrahedron (TetMesh::tet_mid) maps barycentric coordinates L0..L3 to
 //   x(L) = sum_i L_i (2 L_i - 1) x_i + sum_{i<j} 4 L_i L_j x_ij,
 // and its Jacobian determinant det(dx/d(L1, L2, L3)) equals 6 times the volume of the straight tetrahedron when
-// every mid node sits at its edge's midpoint. The checks below evaluate it at the ten nodes, as solvers and
-// pre-processors (CalculiX, Abaqus, ANSYS's "Jacobian ratio") do.
+// every mid node sits at its edge's midpoint. The checks below evaluate it at the ten nodes, as pre-processors do
+// (ANSYS's "Jacobian ratio"), and at the four integration points and the centroid, where CalculiX and Abaqus need it
+// positive: a ratio fine at the nodes can hide a negative Jacobian at an integration point.
 #pragma once
 
 #include <cstddef>
@@ -24,7 +25,8 @@ namespace qualmesh {
 // the tetrahedra (a face whose edges no tet has).
 void make_second_order(TetMesh& mesh);
 
-// Jacobian determinant of 10-node tetrahedron t at its ten nodes (tet_mid must be filled).
+// Jacobian determinant of 10-node tetrahedron t at its ten nodes, four integration points and centroid (tet_mid
+// must be filled).
 struct Tet10Jacobian {
   double min_det = 0;
   double max_det = 0;
@@ -37,10 +39,13 @@ Tet10Jacobian tet10_jacobian(const TetMesh& mesh, std::size_t t);
 struct NodeMove {
   Index node = 0;
   Point3 target{};
+  // Other places as good as the target (on the same CAD face or edge), tried in order, each in full, when the
+  // target cannot be reached in full.
+  std::vector<Point3> alternatives;
 };
 
 struct NodeMoveOptions {
-  // A second-order element is acceptable when its Jacobian is positive at all ten nodes and
+  // A second-order element is acceptable when its Jacobian (Tet10Jacobian) is positive and
   // min/max >= min_jacobian_ratio.
   double min_jacobian_ratio = 0.1;
   // A linear element is acceptable when its volume stays positive and at least this fraction of its volume before
@@ -51,6 +56,14 @@ struct NodeMoveOptions {
   // interior nodes (nodes on no face of TetMesh::faces) by the same displacement too, so that the boundary node
   // still reaches its target; only then relax it part of the way.
   bool drag_interior = true;
+  // When dragging them by the same displacement does not do, search other positions for those interior nodes that
+  // keep every element around them acceptable, the node at its target (the untangling of Gmsh's high-order
+  // optimiser, in miniature: a compass search on the worst element's margin). Only with drag_interior.
+  bool optimise_interior = true;
+  // When no full move keeps every element at min_jacobian_ratio, try them all again asking only this ratio of the
+  // elements around the node (0: never) before relaxing the node part of the way: a node off its CAD face is a
+  // load FreeCAD drops without a word, a low but positive Jacobian ratio an element CalculiX still takes.
+  double last_resort_jacobian_ratio = 0.01;
 };
 
 struct NodeMoveReport {
@@ -59,6 +72,9 @@ struct NodeMoveReport {
   std::size_t num_partial = 0;    // made part of the way (an element would have been unacceptable at the target)
   std::size_t num_refused = 0;    // not made at all
   std::size_t num_dragged = 0;    // full moves made by also moving interior nodes (NodeMoveOptions::drag_interior)
+  std::size_t num_optimised = 0;  // full moves made by searching new places for them (optimise_interior)
+  std::size_t num_last_resort = 0;  // full moves made at last_resort_jacobian_ratio (counted in the above too)
+  std::size_t num_alternative = 0;  // full moves made to one of NodeMove::alternatives
   double max_distance_left = 0;   // largest distance between a node and its target after the moves, model units
   std::size_t num_bad_elements = 0;  // elements unacceptable after all moves, not counting the flat ones below
   // Elements that cannot be judged by their Jacobian ratio: corners (nearly) flat, |6V| <= 1e-6 of the longest edge
