@@ -66,21 +66,26 @@ std::string finish_mesh(const MeshArgs& args, TetMesh& mesh, const std::optional
     r.num_flat_caps_removed += mids.num_flat_caps_removed;
     r.num_curving_caps_removed = mids.num_curving_caps_removed;
   }
-  char line[600];
-  std::snprintf(line, sizeof line, "cad fit:     %zu boundary nodes onto their CAD faces/edges (max offset %.3g): %zu in full (%zu moving "
-              "interior nodes too, %zu placing them by a search), %zu part way, %zu not moved (an element would invert); %zu flat tetrahedra "
-              "against the boundary removed\n",
-              r.num_corner_targets, r.max_offset_before, r.corners.num_full, r.corners.num_dragged,
-              r.corners.num_optimised, r.corners.num_partial, r.corners.num_refused, r.num_flat_caps_removed);
+  char line[800];
+  std::snprintf(line, sizeof line,
+                "cad fit:     %zu boundary nodes onto their CAD faces/edges (max offset %.3g): %zu in full (%zu moving "
+                "interior nodes too, %zu placing them by a search), %zu part way, %zu not moved (an element would "
+                "invert); %zu flat tetrahedra against the boundary removed\n",
+                r.num_corner_targets, r.max_offset_before, r.corners.num_full, r.corners.num_dragged,
+                r.corners.num_optimised, r.corners.num_partial, r.corners.num_refused, r.num_flat_caps_removed);
   std::string lines = line;
   if (fit.second_order) {
-    std::snprintf(line, sizeof line, "curving:     %zu mid nodes onto their CAD faces/edges: %zu in full (%zu moving interior nodes too, "
-                "%zu placing them by a search, %zu elsewhere along their edge, %zu leaving an element below %.2g), %zu relaxed toward straight, %zu left straight; min Jacobian ratio %.3g, %zu elements below %.2g; %zu "
-                "flat elements (flat in the straight mesh already); %zu boundary caps removed so that mid nodes "
-                "reach the surface\n",
-                r.num_mid_targets, r.mids.num_full, r.mids.num_dragged, r.mids.num_optimised, r.mids.num_alternative, r.mids.num_last_resort, fit.moves.min_jacobian_ratio, r.mids.num_partial, r.mids.num_refused,
-                r.mids.min_jacobian_ratio, r.mids.num_bad_elements, fit.moves.min_jacobian_ratio,
-                r.mids.num_flat_elements, r.num_curving_caps_removed);
+    const double bar = fit.moves.min_jacobian_ratio;
+    std::snprintf(line, sizeof line,
+                  "curving:     %zu mid nodes onto their CAD faces/edges: %zu in full (%zu moving interior nodes "
+                  "too, %zu placing them by a search, %zu elsewhere along their edge, %zu leaving an element below "
+                  "%.2g), %zu relaxed toward straight, %zu left straight; min Jacobian ratio %.3g, %zu elements "
+                  "below %.2g; %zu flat elements (flat in the straight mesh already); %zu boundary caps removed so "
+                  "that mid nodes reach the surface\n",
+                  r.num_mid_targets, r.mids.num_full, r.mids.num_dragged, r.mids.num_optimised,
+                  r.mids.num_alternative, r.mids.num_last_resort, bar, r.mids.num_partial, r.mids.num_refused,
+                  r.mids.min_jacobian_ratio, r.mids.num_bad_elements, bar, r.mids.num_flat_elements,
+                  r.num_curving_caps_removed);
     lines += line;
   }
   return lines;

@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <map>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "mesh_groups.h"
 #include "mesh_io_internal.h"
@@ -111,8 +112,14 @@ struct Element {
 
 struct Set {
   std::string name;
-  std::vector<long long> ids;
+  std::vector<long long> ids;            // in order of first appearance, each once
+  std::unordered_set<long long> members;  // the same ids: a set that names an id again, or itself, gains nothing
 };
+
+// All sets together name at most this many ids per node and element defined, plus kSetMembersSlack: a set names
+// each id once, but a few lines that copy sets into sets can otherwise ask for gigabytes (a fuzzing finding).
+constexpr std::size_t kSetMembersPerEntity = 16;
+constexpr std::size_t kSetMembersSlack = 1000000;
 
 class AbaqusReader {
  public:
@@ -256,10 +263,10 @@ class AbaqusReader {
         auto it = block_sets_.find(key);
         if (it == block_sets_.end()) it = block_sets_.emplace(key, static_cast<int>(block_sets_.size()) + 1).first;
         e.block_set = it->second;
-        add_to_set(elsets_, elset, id);
       }
       if (!elements_.emplace(id, e).second) fail(ErrorCode::Parse, "element " + std::to_string(id) + " defined twice");
       element_order_.push_back(id);
+      if (!elset.empty()) add_to_set(elsets_, elset, id);
     } else if (keyword == "ELSET" || keyword == "NSET") {
       const bool is_elset = keyword == "ELSET";
       const std::string name = param(params, is_elset ? "ELSET" : "NSET");
@@ -313,11 +320,25 @@ class AbaqusReader {
     // Every other keyword (*HEADING, *MATERIAL, *STEP, ...): its data lines are skipped.
   }
 
+  // Adds id to set `name` of `sets` (elsets_ or nsets_). The id must name an element or node defined above.
   void add_to_set(std::map<std::string, Set>& sets, const std::string& name, long long id) {
+    const bool of_elements = &sets == &elsets_;
+    if (of_elements ? !elements_.count(id) : !node_index_.count(id)) {
+      const char* what = of_elements ? "element" : "node";
+      fail(ErrorCode::IndexOutOfRange, std::string(what) + " set " + name + " names missing " + what + " " +
+                                           std::to_string(id) + " (a set names " + what + "s defined above it)");
+    }
     auto& set = sets[upper(name)];
     if (set.name.empty()) {
       set.name = name;
-      if (&sets == &elsets_) elset_order_.push_back(&set);
+      if (of_elements) elset_order_.push_back(&set);
+    }
+    if (!set.members.insert(id).second) return;
+    const std::size_t most = kSetMembersPerEntity * (points_.size() + elements_.size()) + kSetMembersSlack;
+    if (++num_set_members_ > most) {
+      fail(ErrorCode::Parse, "absurd set sizes: the sets name more than " + std::to_string(most) +
+                                 " ids in all, for " + std::to_string(points_.size()) + " nodes and " +
+                                 std::to_string(elements_.size()) + " elements");
     }
     set.ids.push_back(id);
   }
@@ -349,6 +370,7 @@ class AbaqusReader {
   std::map<std::string, int> block_sets_, surface_order_;
   std::map<std::string, Set> elsets_, nsets_;
   std::vector<const Set*> elset_order_;  // element sets in order of first appearance
+  std::size_t num_set_members_ = 0;      // over all sets (add_to_set)
   std::vector<Side> sides_;
 };
 
@@ -363,22 +385,6 @@ TetMesh AbaqusReader::build() {
       for (long long id : set->ids) marker_of.emplace(id, value);
     } else if (numbered_name(set->name, "Edge", value)) {
       for (long long id : set->ids) edge_marker_of.emplace(id, value);
-    }
-  }
-  for (const auto& [name, set] : elsets_) {
-    for (long long id : set.ids) {
-      if (!elements_.count(id)) {
-        throw InputError(ErrorCode::IndexOutOfRange, "element set " + set.name + " names missing element " +
-                                                         std::to_string(id), path_);
-      }
-    }
-  }
-  for (const auto& [name, set] : nsets_) {
-    for (long long id : set.ids) {
-      if (!node_index_.count(id)) {
-        throw InputError(ErrorCode::IndexOutOfRange, "node set " + set.name + " names missing node " +
-                                                         std::to_string(id), path_);
-      }
     }
   }
   const auto label = [](const std::unordered_map<long long, int>& of, long long id, int fallback) {

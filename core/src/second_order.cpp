@@ -92,7 +92,8 @@ Tet10Jacobian jacobian_of(const Point3 (&corners)[4], const Point3 (&mids)[6]) {
   const auto corner = [&](int i) -> const Point3& { return corners[i]; };
   const auto mid = [&](int i, int j) -> const Point3& { return mids[mid_slot(i, j)]; };
   // Evaluation points: the corners, the edge midpoints, the integration points, the centroid.
-  constexpr double kGaussA = 0.1381966011250105, kGaussB = 0.5854101966249685;  // (5 - sqrt 5) / 20, (5 + 3 sqrt 5) / 20
+  constexpr double kGaussA = 0.1381966011250105;  // (5 - sqrt 5) / 20
+  constexpr double kGaussB = 0.5854101966249685;  // (5 + 3 sqrt 5) / 20
   double L[15][4] = {};
   for (int i = 0; i < 4; ++i) L[i][i] = 1;
   for (int k = 0; k < 6; ++k) L[4 + k][kTetEdges[k][0]] = L[4 + k][kTetEdges[k][1]] = 0.5;

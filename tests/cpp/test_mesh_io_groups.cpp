@@ -351,6 +351,25 @@ TEST(MeshIoAbaqus, ErrorsNameFileAndLine) {
   expect_error("*NODE\n1, 0, zero, 0\n", ErrorCode::Parse, 2);
   expect_error("1, 0, 0, 0\n", ErrorCode::Parse, 1);
   expect_error(nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n*SURFACE, NAME=S\n1, S7\n", ErrorCode::Parse, 9);
+  // A set names what is defined above it, with the line of the name.
+  expect_error(nodes + "*NSET, NSET=Face1\n1, 2\n5\n", ErrorCode::IndexOutOfRange, 8);
+  expect_error(nodes + "*ELSET, ELSET=Solid1\n1\n*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n", ErrorCode::IndexOutOfRange, 7);
+}
+
+// A set copied into itself line after line holds each id once (fuzzing finding tests/fuzz/regressions/inp/
+// set-copied-into-itself: each copy doubled the set, and 6 kB of them took 4 GB and 223 s), and an element set
+// copied into itself and then into a surface gives each face once.
+TEST(MeshIoAbaqus, SetsHoldEachIdOnce) {
+  const auto dir = test::temp_dir("io-inp-set-doubling");
+  std::string text = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n*ELEMENT, TYPE=C3D4, ELSET=E\n1, 1, 2, 3, 4\n"
+                     "*NSET, NSET=Face1\n1, 2, 3\n";
+  for (int i = 0; i < 64; ++i) text += "*NSET, NSET=Face1\nFace1, 1, 2\n*ELSET, ELSET=E\nE, 1\n";
+  text += "*SURFACE, NAME=Face1, TYPE=ELEMENT\nE, S1\n";
+  write_text(dir / "twice.inp", text);
+  const TetMesh mesh = read_tet_mesh((dir / "twice.inp").string());
+  ASSERT_EQ(mesh.tets.size(), 1u);
+  ASSERT_EQ(mesh.faces.size(), 1u);
+  EXPECT_EQ(sorted3(mesh.faces[0]), (std::array<Index, 3>{0, 1, 2}));
 }
 
 }  // namespace

@@ -434,5 +434,8 @@ case("fuzz-tetgen-vertex-index-overflow", ["check", "{in}/fuzz_vertex_index.node
 case("fuzz-vtu-offset-beyond-size-t", ["check", "{in}/fuzz_offset_beyond_size_t.vtu"], 2,
      r"fuzz_offset_beyond_size_t\.vtu:\d+: error\[parse\]: bad offsets: cell 7 ends at 3\.1e\+78, outside 27\.\.60 or not "
      r"a whole number")
+case("fuzz-inp-set-copied-into-itself", ["check", "{in}/fuzz_set_copied_into_itself.inp"], 2,
+     r"fuzz_set_copied_into_itself\.inp:4: error\[index-out-of-range\]: node set Face3 names missing node 1 \(a set "
+     r"names nodes defined above it\)", timeout=10)
 case("fuzz-medit-vertex-count-beyond-file", ["check", "{in}/fuzz_vertex_count.mesh"], 2,
      r"fuzz_vertex_count\.mesh:\d+: error\[parse\]: absurd the number of vertices: 999999999, but only \d+ bytes")

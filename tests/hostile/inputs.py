@@ -274,6 +274,8 @@ for _ext, _part in zip([".node", ".ele", ".face"], _parts):
 INPUTS["fuzz_offset_beyond_size_t.vtu"] = (_FUZZ / "vtu" / "offset-beyond-size_t").read_bytes()
 # a Medit mesh announcing 999999999 vertices in a few bytes: 24 GB were allocated for them
 INPUTS["fuzz_vertex_count.mesh"] = (_FUZZ / "mesh_medit" / "vertex-count-beyond-file").read_bytes()
+# an .inp whose sets were copied into themselves, each copy doubling them: 4 GB and 223 s for 6 kB
+INPUTS["fuzz_set_copied_into_itself.inp"] = (_FUZZ / "inp" / "set-copied-into-itself").read_bytes()
 
 
 def write_inputs(folder):
