@@ -43,7 +43,7 @@ namespace {
 constexpr int kNone = 0;
 constexpr int kSeveral = -1;
 // Rounds of boundary-cap removal for the mid nodes (fit_mesh_to_cad).
-constexpr int kMaxCapRounds = 4;
+constexpr int kMaxCapRounds = 6;
 
 // The one CAD entity (marker > 0) a node lies on, kNone, or kSeveral.
 void note(std::vector<int>& on, Index node, int marker) {
@@ -195,11 +195,10 @@ double distance(const Point3& a, const Point3& b) {
 constexpr double kAlongEdge[] = {0.4, 0.6, 0.3, 0.7};
 
 // Targets for the nodes listed in on_edge / on_face (by node index): an edge wins over a face; a node on several
-// edges (a CAD vertex) or several faces and no edge stays. `ends` (mid nodes only, indexed from first_node) gives
-// each node's edge, for the alternatives along it.
+// edges (a CAD vertex) or several faces and no edge stays.
 std::vector<NodeMove> targets(Projector& projector, const TetMesh& mesh, const std::vector<int>& on_edge,
                               const std::vector<int>& on_face, Index first_node, std::size_t& num_fixed,
-                              double* max_offset, const std::vector<std::array<Index, 2>>* ends = nullptr) {
+                              double* max_offset) {
   BoundingBox box;
   for (const Point3& p : mesh.points) box.add(p);
   const double still = box.empty() ? 0 : 1e-12 * distance(box.min, box.max);
@@ -217,27 +216,28 @@ std::vector<NodeMove> targets(Projector& projector, const TetMesh& mesh, const s
     if (distance(target, mesh.points[v]) <= still) continue;  // on it already (to rounding): stays exact
     if (max_offset) *max_offset = std::max(*max_offset, distance(target, mesh.points[v]));
     moves.push_back({v, target, {}});
-    if (!ends) continue;
-    const Point3 &a = mesh.points[(*ends)[v - first_node][0]], &b = mesh.points[(*ends)[v - first_node][1]];
-    for (double t : kAlongEdge) {
-      const Point3 p{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
-      Point3 q{};
-      if (on_edge[v] > 0 ? projector.onto_edge(on_edge[v], p, q) : projector.onto_face(on_face[v], p, q))
-        moves.back().alternatives.push_back(q);
-    }
-    // A place FreeCAD's node search cannot see comes after those it can.
-    const auto findable = [&](const Point3& q) {
-      return on_edge[v] > 0 ? projector.edge_findable(on_edge[v], q) : projector.face_findable(on_face[v], q);
-    };
-    NodeMove& move = moves.back();
-    if (findable(move.target)) continue;
-    std::vector<Point3> all{move.target};
-    all.insert(all.end(), move.alternatives.begin(), move.alternatives.end());
-    std::stable_partition(all.begin(), all.end(), findable);
-    move.target = all.front();
-    move.alternatives.assign(all.begin() + 1, all.end());
   }
   return moves;
+}
+
+// Mid node `move.node` of the edge a-b, on CAD edge `edge` (> 0) or else face `face`: its move with the places
+// along the edge as alternatives, and a target FreeCAD's node search cannot see put after those it can.
+NodeMove along_edge(Projector& projector, NodeMove move, const Point3& a, const Point3& b, int edge, int face) {
+  for (double t : kAlongEdge) {
+    const Point3 p{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+    Point3 q{};
+    if (edge > 0 ? projector.onto_edge(edge, p, q) : projector.onto_face(face, p, q)) move.alternatives.push_back(q);
+  }
+  const auto findable = [&](const Point3& q) {
+    return edge > 0 ? projector.edge_findable(edge, q) : projector.face_findable(face, q);
+  };
+  if (findable(move.target)) return move;
+  std::vector<Point3> all{move.target};
+  all.insert(all.end(), move.alternatives.begin(), move.alternatives.end());
+  std::stable_partition(all.begin(), all.end(), findable);
+  move.target = all.front();
+  move.alternatives.assign(all.begin() + 1, all.end());
+  return move;
 }
 
 }  // namespace
@@ -321,16 +321,32 @@ CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options,
         for (int k = 0; k < 6; ++k)
           ends[mesh.tet_mid[t][k] - first_mid] = {mesh.tets[t][kTetEdges[k][0]], mesh.tets[t][kTetEdges[k][1]]};
       std::size_t unused = 0;
-      const std::vector<NodeMove> moves = targets(projector, mesh, on_edge, on_face, first_mid, unused, nullptr, &ends);
+      const std::vector<NodeMove> moves = targets(projector, mesh, on_edge, on_face, first_mid, unused, nullptr);
       report.num_mid_targets = moves.size();
-      report.mids = move_nodes_checked(mesh, moves, last ? fit_options.moves : strict);
+      // The places along a node's edge are projected only when its target fails (OpenCASCADE's projection is most
+      // of the curving's time); a target FreeCAD's node search cannot see gets them at once, and goes after them.
+      const auto along = [&](const NodeMove& m) {
+        const auto& e = ends[m.node - first_mid];
+        return along_edge(projector, m, mesh.points[e[0]], mesh.points[e[1]], on_edge[m.node], on_face[m.node]);
+      };
+      std::vector<NodeMove> placed;
+      for (const NodeMove& m : moves) {
+        const bool seen = on_edge[m.node] > 0 ? projector.edge_findable(on_edge[m.node], m.target)
+                                              : projector.face_findable(on_face[m.node], m.target);
+        placed.push_back(seen ? m : along(m));
+      }
+      report.mids = move_nodes_checked(mesh, placed, last ? fit_options.moves : strict,
+                                       [&](const NodeMove& m) { return along(m).alternatives; });
       if (report.mids.num_full == report.mids.num_requested || last) break;
       const std::vector<std::size_t>& blocking = report.mids.blocking_elements;
-      const std::size_t removed = round == kMaxCapRounds ? 0 : remove_boundary_caps(linear, [&](std::size_t t) {
-        return std::binary_search(blocking.begin(), blocking.end(), t);
-      });
+      const auto blocked = [&](std::size_t t) { return std::binary_search(blocking.begin(), blocking.end(), t); };
+      // Caps across a CAD edge cannot be removed: their interior edge is split, so that its new vertex can move
+      // (first: the split keeps the indices of the tetrahedra that `blocking` names).
+      const std::size_t split = round == kMaxCapRounds ? 0 : split_cap_interior_edges(linear, blocked);
+      const std::size_t removed = round == kMaxCapRounds ? 0 : remove_boundary_caps(linear, blocked);
+      report.num_cap_edges_split += split;
       report.num_curving_caps_removed += removed;
-      if (removed == 0) {
+      if (removed == 0 && split == 0) {
         if (fit_options.moves.last_resort_jacobian_ratio <= 0) break;
         last = true;
       }

@@ -48,7 +48,7 @@ double element_measure(const TetMesh& mesh, std::size_t t) {
 }
 
 // Rounds of NodeMoveOptions::optimise_interior's search for one move.
-constexpr int kMaxOptimiseRounds = 200;
+constexpr int kMaxOptimiseRounds = 30;
 
 }  // namespace
 
@@ -169,7 +169,8 @@ Tet10Jacobian tet10_jacobian(const TetMesh& mesh, std::size_t t) {
   return jacobian_of(corners, mids);
 }
 
-NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& moves, const NodeMoveOptions& options) {
+NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& moves, const NodeMoveOptions& options,
+                                  const std::function<std::vector<Point3>(const NodeMove&)>& alternatives_of) {
   NodeMoveReport report;
   report.num_requested = moves.size();
   // Elements having each node (corner or mid node).
@@ -244,7 +245,7 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
     const auto worst = [&] { return *std::min_element(margin.begin(), margin.end()); };
     double best = worst();
     double step = std::sqrt(shift[0] * shift[0] + shift[1] * shift[1] + shift[2] * shift[2]);
-    const double finest = 1e-3 * step;
+    const double finest = 1e-2 * step;
     std::vector<double> trial;
     for (int round = 0; best < 0 && step > finest && round < kMaxOptimiseRounds; ++round) {
       bool improved = false;
@@ -297,6 +298,7 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
     std::vector<std::size_t> blocking, unused;
     // The target, then each alternative, at min_jacobian_ratio; then all of them again at the last resort's ratio.
     std::vector<Point3> shifts{full};
+    bool asked = !move.alternatives.empty() || !alternatives_of;
     for (const Point3& q : move.alternatives) shifts.push_back({q[0] - start[0], q[1] - start[1], q[2] - start[2]});
     Full how = kNot;
     for (int pass = 0; pass < (last_resort ? 2 : 1) && how == kNot; ++pass) {
@@ -304,6 +306,11 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
       for (std::size_t k = 0; k < shifts.size() && how == kNot; ++k) {
         how = full_move(move.node, shifts[k], pass == 0 && k == 0 ? blocking : unused);
         if (how != kNot && k > 0) ++report.num_alternative;
+        if (how == kNot && !asked) {  // the target failed: now the alternatives are worth finding
+          asked = true;
+          for (const Point3& q : alternatives_of(move))
+            shifts.push_back({q[0] - start[0], q[1] - start[1], q[2] - start[2]});
+        }
       }
       if (how != kNot && pass == 1) ++report.num_last_resort;
     }
@@ -459,6 +466,69 @@ std::size_t remove_boundary_caps(TetMesh& mesh, const std::function<bool(std::si
   for (const NewFace& f : added) keep_face(f.v, f.facet, f.marker);
   mesh = std::move(next);
   return removed;
+}
+
+std::size_t split_cap_interior_edges(TetMesh& mesh, const std::function<bool(std::size_t)>& select) {
+  if (mesh.is_second_order()) throw std::invalid_argument("split_cap_interior_edges: linear meshes only");
+  std::vector<std::uint8_t> on_face(mesh.points.size(), 0);
+  std::vector<std::uint64_t> face_edges;
+  for (const auto& f : mesh.faces)
+    for (int k = 0; k < 3; ++k) {
+      on_face[f[k]] = 1;
+      face_edges.push_back(edge_key(f[k], f[(k + 1) % 3]));
+    }
+  std::sort(face_edges.begin(), face_edges.end());
+  // Caps whose two boundary faces carry one label are remove_boundary_caps's: left alone.
+  const std::vector<int> labels = face_labels(mesh);
+  std::map<std::array<Index, 3>, int> label_of;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    std::array<Index, 3> key = mesh.faces[f];
+    std::sort(key.begin(), key.end());
+    label_of.emplace(key, labels[f]);
+  }
+  const auto one_label_cap = [&](const std::array<Index, 4>& v) {
+    std::vector<int> found;
+    for (int i = 0; i < 4; ++i) {
+      std::array<Index, 3> key{v[(i + 1) & 3], v[(i + 2) & 3], v[(i + 3) & 3]};
+      std::sort(key.begin(), key.end());
+      const auto it = label_of.find(key);
+      if (it != label_of.end()) found.push_back(it->second);
+    }
+    return found.size() == 2 && found[0] == found[1];
+  };
+  std::vector<std::array<Index, 2>> split;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& v = mesh.tets[t];
+    if (!on_face[v[0]] || !on_face[v[1]] || !on_face[v[2]] || !on_face[v[3]] || one_label_cap(v)) continue;
+    int inside = -1, n = 0;
+    for (int k = 0; k < 6; ++k)
+      if (!std::binary_search(face_edges.begin(), face_edges.end(), edge_key(v[kTetEdges[k][0]], v[kTetEdges[k][1]])))
+        inside = k, ++n;
+    if (n != 1 || !select(t)) continue;
+    split.push_back({std::min(v[kTetEdges[inside][0]], v[kTetEdges[inside][1]]),
+                     std::max(v[kTetEdges[inside][0]], v[kTetEdges[inside][1]])});
+  }
+  std::sort(split.begin(), split.end());
+  split.erase(std::unique(split.begin(), split.end()), split.end());
+  for (const auto& [c, d] : split) {
+    const Index m = static_cast<Index>(mesh.points.size());
+    mesh.points.push_back(midpoint(mesh.points[c], mesh.points[d]));
+    if (!mesh.weights.empty()) mesh.weights.push_back(0);
+    const std::size_t count = mesh.tets.size();
+    for (std::size_t t = 0; t < count; ++t) {
+      std::array<Index, 4> near_c = mesh.tets[t], near_d = mesh.tets[t];
+      int has = 0;
+      for (int i = 0; i < 4; ++i) {
+        if (near_c[i] == d) near_c[i] = m, ++has;  // (.., c, .., m): the half at c
+        if (near_d[i] == c) near_d[i] = m, ++has;  // (.., m, .., d): the half at d
+      }
+      if (has != 2) continue;
+      mesh.tets[t] = near_c;  // a vertex moved along the edge keeps the orientation
+      mesh.tets.push_back(near_d);
+      if (!mesh.tet_region.empty()) mesh.tet_region.push_back(mesh.tet_region[t]);
+    }
+  }
+  return split.size();
 }
 
 }  // namespace qualmesh

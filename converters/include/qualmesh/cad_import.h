@@ -146,6 +146,8 @@ struct CadFitReport {
   std::size_t num_flat_caps_removed = 0; // flat tetrahedra against the boundary removed (remove_flat_boundary_tets)
   // Second order: boundary caps removed because they kept a mid node off its curved face (remove_boundary_caps).
   std::size_t num_curving_caps_removed = 0;
+  // Second order: interior edges of caps across a CAD edge split for the same reason (split_cap_interior_edges).
+  std::size_t num_cap_edges_split = 0;
 };
 
 // Moves every boundary node of `mesh` onto the CAD face or edge it lies on: a node on one marked edge (Edge<e>)

@@ -91,8 +91,11 @@ struct NodeMoveReport {
 // (NodeMoveOptions): the full move when that is acceptable, else the full move dragging the interior nodes of the
 // elements it spoils, else the largest of 3/4, 1/2, 1/4 of it that is acceptable, else none. An element that was
 // unacceptable before a move only has to get no worse. Mutates mesh.points only.
+// `alternatives_of`, when given, supplies the alternatives of a move that has none, only when its target fails
+// (they may be costly to find).
 NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& moves,
-                                  const NodeMoveOptions& options = {});
+                                  const NodeMoveOptions& options = {},
+                                  const std::function<std::vector<Point3>(const NodeMove&)>& alternatives_of = {});
 
 // Removes the nearly flat tetrahedra (|6V| <= flat L^3, L the longest edge) that lie against the boundary: a
 // tetrahedron with exactly two faces in mesh.faces, both with the same face label, whose common edge is no
@@ -112,5 +115,16 @@ std::size_t remove_flat_boundary_tets(TetMesh& mesh, double flat = 1e-6);
 // cap's two boundary faces meet at a corner whose three edges all lie on the face, so no interior node can keep its
 // Jacobian positive once they follow the surface.
 std::size_t remove_boundary_caps(TetMesh& mesh, const std::function<bool(std::size_t)>& select);
+
+// Splits at its midpoint the one interior edge (on no face of mesh.faces) of each tetrahedron `select(t)` picks
+// whose four corners all lie on faces and whose other five edges all lie on faces, unless it is a cap with two faces
+// of one label (remove_boundary_caps's): a boundary cap across a CAD edge,
+// whose only interior node, that edge's mid node, cannot keep its Jacobian positive once the mid nodes of both
+// curved faces follow the surface. Every tetrahedron around the edge is split in two; the new vertex is interior,
+// so a later curving may drag it or place it by a search (move_nodes_checked). Faces, edges and the volume are
+// unchanged; tetrahedron t stays at index t (the half at the edge's smaller end) and the other halves are appended,
+// so indices from before the split still name the tetrahedra that were not split. Linear meshes only. Returns how
+// many edges were split.
+std::size_t split_cap_interior_edges(TetMesh& mesh, const std::function<bool(std::size_t)>& select);
 
 }  // namespace qualmesh
