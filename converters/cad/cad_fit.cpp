@@ -298,8 +298,8 @@ CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options,
     // boundary: where the surface bends towards the cap no interior node can keep its Jacobian positive, and every
     // mid node it blocks would be left part way. Such caps are removed from the linear mesh when both faces are on
     // one CAD face (its boundary diagonal flips, the volume changes by the cap's), and the mid nodes are placed
-    // again, for a few rounds. (Caps across a CAD edge stay: splitting their free edge, tried, left as many nodes
-    // part way and worse tetrahedra.)
+    // again, for a few rounds. Caps across a CAD edge cannot be removed: their interior edge is split instead
+    // (split_cap_interior_edges), which the search of interior positions makes pay off (wrenchnut, model1).
     // A last round, when caps are all that could be removed and some mid nodes still fall short, asks the elements
     // only for NodeMoveOptions::last_resort_jacobian_ratio.
     NodeMoveOptions strict = fit_options.moves;

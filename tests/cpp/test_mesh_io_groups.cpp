@@ -361,7 +361,8 @@ TEST(MeshIoAbaqus, ErrorsNameFileAndLine) {
 // copied into itself and then into a surface gives each face once.
 TEST(MeshIoAbaqus, SetsHoldEachIdOnce) {
   const auto dir = test::temp_dir("io-inp-set-doubling");
-  std::string text = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n*ELEMENT, TYPE=C3D4, ELSET=E\n1, 1, 2, 3, 4\n"
+  std::string text = "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n"
+                     "*ELEMENT, TYPE=C3D4, ELSET=E\n1, 1, 2, 3, 4\n"
                      "*NSET, NSET=Face1\n1, 2, 3\n";
   for (int i = 0; i < 64; ++i) text += "*NSET, NSET=Face1\nFace1, 1, 2\n*ELSET, ELSET=E\nE, 1\n";
   text += "*SURFACE, NAME=Face1, TYPE=ELEMENT\nE, S1\n";

@@ -88,11 +88,11 @@ struct NodeMoveReport {
 };
 
 // Moves each node towards its target, in the order given, keeping every element that has the node acceptable
-// (NodeMoveOptions): the full move when that is acceptable, else the full move dragging the interior nodes of the
-// elements it spoils, else the largest of 3/4, 1/2, 1/4 of it that is acceptable, else none. An element that was
-// unacceptable before a move only has to get no worse. Mutates mesh.points only.
-// `alternatives_of`, when given, supplies the alternatives of a move that has none, only when its target fails
-// (they may be costly to find).
+// (NodeMoveOptions). For the target, then each alternative: the full move alone, else dragging the interior nodes
+// of the elements it spoils, else placing them by the search; all of that again at last_resort_jacobian_ratio;
+// else the largest of 3/4, 1/2, 1/4 of the move to the target that is acceptable, else none. An element that was
+// unacceptable before a move only has to get no worse. Mutates mesh.points only. `alternatives_of`, when given,
+// supplies the alternatives of a move that has none, only once its target fails (they may be costly to find).
 NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& moves,
                                   const NodeMoveOptions& options = {},
                                   const std::function<std::vector<Point3>(const NodeMove&)>& alternatives_of = {});
