@@ -202,14 +202,19 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
     if (quadratic) nodes.insert(nodes.end(), mesh.tet_mid[t].begin(), mesh.tet_mid[t].end());
     return nodes;
   };
-  // Moves `nodes` by `shift` (all of them) and tells whether every element around them stays acceptable; on
-  // failure everything is put back and `spoiled` lists the elements that were not.
-  std::vector<std::size_t> spoiled;
-  const auto try_shift = [&](const std::vector<Index>& nodes, const Point3& shift) {
+  // The elements having any of `nodes`, sorted, each once.
+  const auto elements_around = [&](const std::vector<Index>& nodes) {
     std::vector<std::uint32_t> elements;
     for (Index v : nodes) elements.insert(elements.end(), elements_of[v].begin(), elements_of[v].end());
     std::sort(elements.begin(), elements.end());
     elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
+    return elements;
+  };
+  // Moves `nodes` by `shift` (all of them) and tells whether every element around them stays acceptable; on
+  // failure everything is put back and `spoiled` lists the elements that were not.
+  std::vector<std::size_t> spoiled;
+  const auto try_shift = [&](const std::vector<Index>& nodes, const Point3& shift) {
+    const std::vector<std::uint32_t> elements = elements_around(nodes);
     std::vector<double> before(elements.size());
     for (std::size_t i = 0; i < elements.size(); ++i) before[i] = element_measure(mesh, elements[i]);
     std::vector<Point3> saved;  // put back exactly (p + s - s need not be p in floating point)
@@ -229,10 +234,7 @@ NodeMoveReport move_nodes_checked(TetMesh& mesh, const std::vector<NodeMove>& mo
   // the worst element's margin over its bar. It stops as soon as every element is acceptable; on failure everything
   // is put back exactly.
   const auto optimise_interior = [&](const std::vector<Index>& group, const Point3& shift) {
-    std::vector<std::uint32_t> elements;
-    for (Index v : group) elements.insert(elements.end(), elements_of[v].begin(), elements_of[v].end());
-    std::sort(elements.begin(), elements.end());
-    elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
+    const std::vector<std::uint32_t> elements = elements_around(group);
     std::vector<double> bar(elements.size()), margin(elements.size());
     for (std::size_t i = 0; i < elements.size(); ++i) bar[i] = bar_of(element_measure(mesh, elements[i]));
     const auto local = [&](std::uint32_t t) {

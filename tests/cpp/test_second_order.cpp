@@ -395,13 +395,7 @@ TEST(BoundaryCaps, BlockingElementsAreReported) {
 namespace qualmesh {
 namespace {
 
-double signed_six_volume(const TetMesh& m, std::size_t t) {
-  const auto& v = m.tets[t];
-  const Point3 &a = m.points[v[0]], &b = m.points[v[1]], &c = m.points[v[2]], &d = m.points[v[3]];
-  return (b[0] - a[0]) * ((c[1] - a[1]) * (d[2] - a[2]) - (c[2] - a[2]) * (d[1] - a[1])) -
-         (b[1] - a[1]) * ((c[0] - a[0]) * (d[2] - a[2]) - (c[2] - a[2]) * (d[0] - a[0])) +
-         (b[2] - a[2]) * ((c[0] - a[0]) * (d[1] - a[1]) - (c[1] - a[1]) * (d[0] - a[0]));
-}
+double signed_six_volume(const TetMesh& m, std::size_t t) { return six_volume(m, m.tets[t]); }
 
 // Node 0 lifted to z = 0.5 flattens tet A = (0, 1, 2, 3) unless the interior node 3 rises above the plane through
 // the new node 0 and nodes 1, 2; dragged by the same 0.5 it would cross the ceiling of tet B = (3, 5, 6, 7) at
