@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Side-by-side mesh quality benchmark (issue 4): QualMesh without and with sliver pumping, `tetgen -pq2` and CGAL
-Mesh_3 (python3-pygalmesh) on the same input, in the same run, every mesh judged by the one checker
-`qualmesh check MESH --ref INPUT --json`.
+"""Side-by-side mesh quality benchmark (issues 4 and 16): QualMesh without and with sliver pumping, `tetgen -pq2`,
+CGAL Mesh_3 (python3-pygalmesh), Netgen (python3-netgen) and Gmsh's HXT (python3-gmsh) on the same input, in the same
+run, every mesh judged by the one checker `qualmesh check MESH --ref INPUT --json`.
 
 TetGen runs as `tetgen -pq2aA` (rows say "tetgen -pq2"): `-aA` makes it honour a .poly's regional maximum volumes
 as QualMesh does (bench_tetgen.py); it changes nothing on inputs without them.
@@ -20,6 +20,13 @@ max_facet_distance = s / 10), with min_facet_angle 25 deg, max_circumradius_edge
 -q2 bound), perturb and exude on (Mesh_3's own sliver removal), seed 0. s starts at the edge of a regular
 tetrahedron of QualMesh's mean tetrahedron volume, and is rescaled by (vertices / target)^(1/3) up to
 --cgal-tries times until CGAL's vertex count is within 20% of QualMesh's; the size and the ratio are printed.
+
+Netgen and HXT keep the input surface, as TetGen and QualMesh do (neither refines it): both get the model's own
+triangles (`qualmesh convert --keep-triangles`); a model that is not one triangulated surface (polygonal facets of a
+.poly or .smesh) gets a "no triangulated surface" row. Netgen fills the surface with `Mesh.GenerateVolumeMesh` at
+maxh = the edge of a regular tetrahedron of QualMesh's mean volume (it adds few points inside a fine surface, whatever
+maxh); HXT is `Mesh.Algorithm3D = 10` in one thread over the STL closed into one volume (Gmsh's own optimisation
+steps on). Their times are the meshing call alone, measured inside the script (no interpreter start or file I/O).
 
 QualMesh without pumping: `qualmesh mesh --no-pump` when `qualmesh mesh --help` lists that flag; until then the
 build has no pumping and the plain `qualmesh mesh` row is all there is (the table says so).
@@ -68,6 +75,50 @@ mesh = pygalmesh.generate_volume_mesh_from_surface_mesh(
 seconds = time.perf_counter() - start
 cells = [c for c in mesh.cells if c.type in ("tetra", "triangle")]
 meshio.write(out, meshio.Mesh(mesh.points, cells), file_format="medit")
+print("seconds", seconds)
+"""
+
+
+# Netgen (python3-netgen) keeping the input surface: argv = triangulated surface (OFF), output .mesh, maxh. Netgen's
+# volume mesher fills the given surface mesh (its advancing front plus its optimisation steps) without refining it.
+NETGEN_SCRIPT = r"""
+import sys, time, meshio, numpy as np
+from netgen.meshing import Mesh, FaceDescriptor, Element2D, MeshPoint, MeshingParameters
+from netgen.csg import Pnt
+surface = meshio.read(sys.argv[1])
+tris = np.concatenate([c.data for c in surface.cells if c.type == "triangle"])
+start = time.perf_counter()
+mesh = Mesh(dim=3)
+fd = mesh.Add(FaceDescriptor(bc=1, domin=1, domout=0, surfnr=1))
+ids = [mesh.Add(MeshPoint(Pnt(*map(float, p)))) for p in surface.points]
+for t in tris:
+    mesh.Add(Element2D(fd, [ids[int(i)] for i in t]))
+mesh.GenerateVolumeMesh(MeshingParameters(maxh=float(sys.argv[3])))
+seconds = time.perf_counter() - start
+points = np.array([[p[0], p[1], p[2]] for p in mesh.Points()])
+# Netgen's vertex order is the mirror of QualMesh's positive orientation: swap two vertices.
+tets = np.array([[v.nr - 1 for v in e.vertices] for e in mesh.Elements3D()])[:, [0, 2, 1, 3]]
+meshio.write(sys.argv[2], meshio.Mesh(points, [("tetra", tets), ("triangle", tris)]), file_format="medit")
+print("seconds", seconds)
+"""
+
+# Gmsh's HXT (Mesh.Algorithm3D = 10), one thread, keeping the input surface: argv = triangulated surface (STL),
+# output .mesh. The surface is a discrete Gmsh surface, closed into one volume; HXT never refines it.
+HXT_SCRIPT = r"""
+import sys, time, gmsh
+gmsh.initialize()
+gmsh.option.setNumber("General.Terminal", 0)
+gmsh.option.setNumber("General.NumThreads", 1)
+gmsh.merge(sys.argv[1])
+loop = gmsh.model.geo.addSurfaceLoop([tag for _, tag in gmsh.model.getEntities(2)])
+gmsh.model.geo.addVolume([loop])
+gmsh.model.geo.synchronize()
+gmsh.option.setNumber("Mesh.Algorithm3D", 10)
+start = time.perf_counter()
+gmsh.model.mesh.generate(3)
+seconds = time.perf_counter() - start
+gmsh.write(sys.argv[2])
+gmsh.finalize()
 print("seconds", seconds)
 """
 
@@ -157,6 +208,36 @@ def run_cgal(poly, surface, target_vertices, start_size, args, tmp):
     return result, note
 
 
+def input_triangles(qualmesh, model, poly, tmp):
+    """The model's own triangles as OFF and ASCII STL (for the peers that keep the input surface: Netgen, HXT), or an
+    error string when the input is not a triangulated surface meshio reads (polygonal facets, several regions)."""
+    import meshio
+    off = Path(tmp) / (poly.stem + "_triangles.off")
+    stl = off.with_suffix(".stl")
+    conv = subprocess.run([qualmesh, "convert", "--keep-triangles", str(model), str(off)], capture_output=True,
+                          text=True)
+    if conv.returncode != 0:
+        return f"no triangulated surface: {conv.stderr.strip()[-80:]}"
+    try:
+        mesh = meshio.read(off)
+    except (Exception, SystemExit):
+        return "no triangulated surface (polygonal facets)"
+    if not all(c.type == "triangle" for c in mesh.cells):
+        return "no triangulated surface (polygonal facets)"
+    meshio.write(stl, mesh, binary=False)
+    return off, stl
+
+
+def run_peer(name, script, script_args, poly, out, args):
+    """Runs a peer's script in a fresh /usr/bin/python3; returns (seconds, report) or an error string."""
+    _, proc = run([PYTHON, "-c", script] + [str(a) for a in script_args], args.timeout)
+    if proc.returncode != 0:
+        return f"{name} failed ({proc.returncode}): {(proc.stderr or proc.stdout).strip()[-100:]}"
+    seconds = float(proc.stdout.split()[-1])
+    report = check(args.qualmesh, out, poly)
+    return report if isinstance(report, str) else (seconds, report)
+
+
 def away_from_acute(stdout):
     """QualMesh's own count of tetrahedra below the sliver angle that touch no acute input angle (issue 4's target:
     none), from the summary line of `qualmesh mesh`; "n/a" when the line is absent."""
@@ -186,6 +267,8 @@ def main():
     parser.add_argument("--repeat", type=int, default=1, help="runs per QualMesh/TetGen mesh (best time kept)")
     parser.add_argument("--cgal-tries", type=int, default=3, help="Mesh_3 sizing runs at most, per model")
     parser.add_argument("--no-cgal", action="store_true", help="leave CGAL Mesh_3 out")
+    parser.add_argument("--no-netgen", action="store_true", help="leave Netgen (python3-netgen) out")
+    parser.add_argument("--no-hxt", action="store_true", help="leave Gmsh's HXT (python3-gmsh) out")
     parser.add_argument("models", nargs="*")
     args = parser.parse_args()
     args.qualmesh = str(Path(args.qualmesh).resolve())
@@ -197,6 +280,13 @@ def main():
         if probe.returncode != 0:
             print("note: python3-pygalmesh is not installed: CGAL Mesh_3 left out", file=sys.stderr)
             have_cgal = False
+    def importable(module, package):
+        if subprocess.run([PYTHON, "-c", f"import {module}, meshio"], capture_output=True).returncode == 0:
+            return True
+        print(f"note: {package} is not installed: its column is left out", file=sys.stderr)
+        return False
+    have_netgen = not args.no_netgen and importable("netgen.meshing", "python3-netgen")
+    have_hxt = not args.no_hxt and importable("gmsh", "python3-gmsh")
     models = [Path(m) for m in args.models] or [m for m in bench_tetgen.DEFAULT_MODELS if m.exists()]
     no_pump = has_flag(args.qualmesh, "--no-pump")
     notes = []
@@ -267,17 +357,30 @@ def main():
                     notes.append(f"{name}: TetGen's mesh of the merged polygonal facets has volume error "
                                  f"{report.get('volume_relative_error')}; also run on the unmerged triangles")
 
+            mean_volume = default_report["mesh_volume"] / max(1, default_report["num_tets"])
+            qualmesh_size = (6 * math.sqrt(2) * mean_volume) ** (1 / 3)  # edge of a regular tet of that volume
             if have_cgal:
                 surface, how = cgal_surface(args.qualmesh, model, poly, default_vtu, tmp)
                 target = default_report["num_points"] - default_report["num_unused_points"]
-                mean_volume = default_report["mesh_volume"] / max(1, default_report["num_tets"])
-                start_size = (6 * math.sqrt(2) * mean_volume) ** (1 / 3)
-                result, note = run_cgal(poly, surface, target, start_size, args, tmp)
+                result, note = run_cgal(poly, surface, target, qualmesh_size, args, tmp)
                 if isinstance(result, str):
                     lines.append(row(name, "CGAL Mesh_3", 0, result.replace("|", "/")))
                 else:
                     lines.append(row(name, "CGAL Mesh_3", *result))
                 notes.append(f"{name}: CGAL surface = {how}; {note}")
+
+            if have_netgen or have_hxt:
+                surface = input_triangles(args.qualmesh, model, poly, tmp)
+                peers = ([("Netgen", NETGEN_SCRIPT, "netgen")] if have_netgen else []) + \
+                        ([("Gmsh HXT", HXT_SCRIPT, "hxt")] if have_hxt else [])
+                for tool, script, tag in peers:
+                    if isinstance(surface, str):
+                        lines.append(row(name, tool, 0, surface))
+                        continue
+                    out = Path(tmp) / (poly.stem + f"_{tag}.mesh")
+                    script_args = [surface[0], out, qualmesh_size] if tag == "netgen" else [surface[1], out]
+                    result = run_peer(tool, script, script_args, poly, out, args)
+                    lines.append(row(name, tool, 0, result) if isinstance(result, str) else row(name, tool, *result))
 
     print("| model | tool | vertices | tets | time s | min dihedral deg | <5 | <10 | <15 | <15 away from acute | "
           "volume error | facet-area error | checker ok | non-regular faces |")
