@@ -5,8 +5,9 @@
 //   - a sliver inside the box is removed by vertex moves alone, and by flips alone;
 //   - input vertices never move, a segment vertex moves only along its line, a facet vertex only in its plane
 //     (exactly: the constrained coordinates keep their bits);
-//   - conformity: the boundary faces are the same list, volume and each facet's area agree to 1e-9
-//     (check_mesh), every tet positively oriented, faces still match;
+//   - conformity: the boundary faces are the same list (or, with splits inside a facet, each face kept or halved
+//     with its facet and marker), volume and each facet's area agree to 1e-9 (check_mesh), every tet positively
+//     oriented, faces still match;
 //   - the minimum dihedral angle over all tets never decreases and the count below the threshold decreases;
 //   - determinism: the same mesh in gives the same bytes out;
 //   - on real inputs (joint.off, fandisk.off through mesh_plc): the same figures, default against --no-improve.
@@ -231,7 +232,9 @@ TEST(Improve, ConstrainedVerticesMoveOnlyAlongTheirLineOrPlane) {
     const auto classes = qualmesh::detail::classify_vertices(mesh, plc);
     std::size_t below_before = 0, below_after = 0;
     const double before = min_dihedral(mesh, 15, &below_before);
-    const auto r = qualmesh::detail::improve_mesh(mesh, plc, {});
+    qualmesh::detail::ImproveOptions options;
+    options.boundary_insertion = false;  // the faces stay the same list (BoundarySplitsKeepEachFacetCovered)
+    const auto r = qualmesh::detail::improve_mesh(mesh, plc, options);
     const double after = min_dihedral(mesh, 15, &below_after);
     const std::string name = "cloud " + std::to_string(seed);
     EXPECT_GE(after, before) << name;
@@ -270,6 +273,38 @@ TEST(Improve, ConstrainedVerticesMoveOnlyAlongTheirLineOrPlane) {
   }
 }
 
+// Splits inside a facet (ImproveOptions::boundary_insertion): the new vertex lies on its facet (the coordinate across
+// the box face is exactly 0 or 1), each split face becomes two faces of the same facet and marker, every original
+// face is either kept or halved, and the mesh conforms (every facet's area covered to 1e-9, the volume exact).
+TEST(Improve, BoundarySplitsKeepEachFacetCovered) {
+  const Plc plc = unit_box();
+  std::size_t splits_on_boundary = 0;
+  for (unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
+    TetMesh mesh = delaunay_box(cloud(60, 40, 16, seed));
+    const TetMesh original = mesh;
+    std::size_t below_before = 0, below_after = 0;
+    const double before = min_dihedral(mesh, 15, &below_before);
+    qualmesh::detail::ImproveOptions options;
+    options.smoothing = false;  // leave the slivers to flips and splits
+    const auto r = qualmesh::detail::improve_mesh(mesh, plc, options);
+    const std::string name = "cloud " + std::to_string(seed);
+    EXPECT_GE(min_dihedral(mesh, 15, &below_after), before) << name;
+    EXPECT_LE(below_after, below_before) << name;
+    splits_on_boundary += r.num_boundary_insertions;
+    ASSERT_EQ(mesh.faces.size(), original.faces.size() + 2 * r.num_boundary_insertions) << name;
+    ASSERT_EQ(mesh.face_facet.size(), mesh.faces.size()) << name;
+    ASSERT_EQ(mesh.face_marker.size(), mesh.faces.size()) << name;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+      const auto& t = mesh.faces[f];
+      const int facet = box_facet_of(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+      EXPECT_EQ(facet, mesh.face_facet[f]) << name << " face " << f;
+      EXPECT_EQ(mesh.face_marker[f], facet + 1) << name << " face " << f;
+    }
+    expect_conforming(mesh, plc, name);
+  }
+  EXPECT_GT(splits_on_boundary, 0u) << "no split inside a facet: the test proves nothing";
+}
+
 TEST(Improve, SameInputSameBytes) {
   const Plc plc = unit_box();
   TetMesh a = delaunay_box(cloud(60, 40, 16, 7)), b = a;
@@ -301,7 +336,22 @@ void expect_improves(const std::string& relative) {
   EXPECT_EQ(improved.stats.min_dihedral_before_improve_deg, q_plain) << relative;
   EXPECT_GT(improved.stats.num_tets_improved, 0u) << relative;
   EXPECT_EQ(improved.mesh.points.size(), plain.mesh.points.size() + improved.stats.num_improve_insertions) << relative;
-  EXPECT_EQ(improved.mesh.faces, plain.mesh.faces) << relative;
+  // Faces: each one kept, or halved by a split inside its facet (the first half keeps its index and swaps one corner
+  // for a new vertex; the second half is appended).
+  ASSERT_GE(improved.mesh.faces.size(), plain.mesh.faces.size()) << relative;
+  std::size_t halved = 0;
+  for (std::size_t f = 0; f < plain.mesh.faces.size(); ++f) {
+    const auto &a = improved.mesh.faces[f], &b = plain.mesh.faces[f];
+    if (a == b) continue;
+    ++halved;
+    int same = 0, added = 0;
+    for (int k = 0; k < 3; ++k) {
+      same += a[k] == b[k];
+      added += a[k] >= plain.mesh.points.size();
+    }
+    EXPECT_TRUE(same == 2 && added == 1) << relative << " face " << f;
+  }
+  EXPECT_GE(improved.mesh.faces.size() - plain.mesh.faces.size(), halved) << relative;
   EXPECT_EQ(improved.tet_touches_acute_angle.size(), improved.mesh.tets.size()) << relative;
   expect_conforming(improved.mesh, plc, relative);
 }

@@ -9,12 +9,14 @@
 // moves follow Shewchuk, "Two discrete optimization algorithms for the topological improvement of tetrahedral
 // meshes" (2002: edge removal by Klincsek's dynamic programme over the ring of an edge) and Klingner & Shewchuk,
 // "Aggressive tetrahedral mesh improvement" (2007: smoothing of the star's minimum quality plus flips; where both
-// fail, an interior edge of the sliver is split and the new free vertex smoothed, their vertex insertion).
+// fail, an interior edge of the sliver is split and the new free vertex smoothed, their vertex insertion; an edge
+// inside a planar facet is split too, its new vertex on the facet: issue 16's sliver-removing points on the boundary).
 //
 // Conformity is exact by construction: an input vertex never moves; a vertex on an input segment moves only along
 // that segment's line, a vertex inside an input facet only within the facet's plane, with every tetrahedron of its
 // star positively oriented and every boundary triangle of its star keeping its orientation; flips touch no boundary
-// or internal-facet face, no segment edge, and join only tetrahedra of one region. So the boundary surface, every
+// or internal-facet face, no segment edge, and join only tetrahedra of one region; a split inside a facet puts its
+// vertex on the facet and splits the two faces holding the edge, each half keeping the facet. So the boundary surface, every
 // input facet (as a union of mesh faces) and each region's volume are those of the input mesh.
 // Deterministic: ordered iteration, no global random generator; the same mesh in gives the same mesh out.
 #pragma once
@@ -70,6 +72,10 @@ struct ImproveOptions {
   // Where flips and moves leave a tet below the threshold: split one of its interior edges at its midpoint and move
   // the new (free) vertex to the best place in its star; kept only when the smallest angle around the edge grows.
   bool insertion = true;
+  // With `insertion`: also split edges inside one planar input facet, the new vertex on the facet and the two
+  // boundary faces holding the edge split with it (improve.cpp split_edge). Off for meshes fitted to a CAD surface
+  // (MeshOptions::before_improve), where a point on the chord between two surface nodes would be off the surface.
+  bool boundary_insertion = true;
   // Largest ring of an edge removal (the n-to-2n-4 flip); 3 is the 3-2 flip.
   int max_edge_ring = 7;
   // Polled once per bad tetrahedron; true stops the pass (the mesh stays valid).
@@ -80,7 +86,8 @@ struct ImproveResult {
   std::size_t num_tets_touched = 0;    // output tetrahedra that are new (flips) or have a moved vertex
   std::size_t num_vertex_moves = 0;    // accepted vertex moves (a vertex may move more than once)
   std::size_t num_vertices_moved = 0;  // distinct vertices moved
-  std::size_t num_insertions = 0;      // interior edges split (a new vertex each, appended to the points)
+  std::size_t num_insertions = 0;      // edges split (a new vertex each, appended to the points)
+  std::size_t num_boundary_insertions = 0;  // of which inside a facet (two boundary faces split each)
   std::size_t num_flips = 0;           // 2-3 flips plus edge removals
   std::size_t num_flips23 = 0;
   std::size_t num_edge_removals = 0;   // of which n = 3 are 3-2 flips
@@ -94,7 +101,8 @@ struct ImproveResult {
 // Improves `mesh` in place: vertex moves within each vertex's freedom, flips inside regions and interior edge splits,
 // each accepted only when the smallest dihedral angle of the tetrahedra it changes strictly increases (so the mesh's
 // minimum never decreases). Points keep their indices (split vertices are appended, with weight 0 when the mesh has
-// weights); faces and edges are unchanged as lists (a face keeps its vertex ids); tets are renumbered in
+// weights); edges are unchanged, and so are faces except where a split inside a facet replaced a face by its two
+// halves (the first keeps the face's index, the second is appended with its facet and marker); tets are renumbered in
 // extract.cpp's canonical order when a flip or split happened, with tet_region following.
 // `touches_acute` (may be null; one flag per tet) is kept aligned: a tet left as it was keeps its flag, a changed
 // one gets `shortest_edge_forced(u, w)` for its shortest edge uw (extract.cpp's criterion: that edge joins vertices

@@ -72,9 +72,11 @@ void improve_extracted(detail::MeshState& s, MeshResult& result, const std::vect
   options.sliver_angle_deg = s.options.sliver_angle_deg;
   options.radius_edge_bound = kImproveRadiusEdgeFactor * s.params.radius_edge_bound;
   options.cancel = s.options.cancel;
+  options.boundary_insertion = !s.options.before_improve;  // a CAD-fitted surface: no new point on a chord
   const detail::ImproveResult r = detail::improve_mesh(
       result.mesh, *s.plc, options, &result.tet_touches_acute_angle, [&](Index u, Index w) {
-        // A vertex the pass added (an edge split) lies in the volume: on no input element.
+        // A vertex the pass added (an edge split) counts as on no input element, even inside a facet: its tets are
+        // never excused as touching an acute angle.
         return u < engine_id.size() && w < engine_id.size() && engine_id[u] != kNoIndex &&
                engine_id[w] != kNoIndex && detail::shortest_edge_forced_by_acute_angle(s, engine_id[u], engine_id[w]);
       });
@@ -87,7 +89,8 @@ void improve_extracted(detail::MeshState& s, MeshResult& result, const std::vect
   s.log_line("improve: " + std::to_string(r.num_tets_touched) + " tets touched, " +
              std::to_string(r.num_vertex_moves) + " vertex moves, " + std::to_string(r.num_flips) + " flips (" +
              std::to_string(r.num_flips23) + " 2-3, " + std::to_string(r.num_edge_removals) +
-             " edge removals), " + std::to_string(r.num_insertions) + " edge splits; below " +
+             " edge removals), " + std::to_string(r.num_insertions) + " edge splits (" + std::to_string(r.num_boundary_insertions) +
+             " inside a facet); below " +
              std::to_string(options.sliver_angle_deg) + " deg: " +
              std::to_string(r.num_below_before) + " -> " + std::to_string(r.num_below_after));
 }
