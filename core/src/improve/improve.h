@@ -16,8 +16,8 @@
 // that segment's line, a vertex inside an input facet only within the facet's plane, with every tetrahedron of its
 // star positively oriented and every boundary triangle of its star keeping its orientation; flips touch no boundary
 // or internal-facet face, no segment edge, and join only tetrahedra of one region; a split inside a facet puts its
-// vertex on the facet and splits the two faces holding the edge, each half keeping the facet. So the boundary surface, every
-// input facet (as a union of mesh faces) and each region's volume are those of the input mesh.
+// vertex on the facet and splits the two faces holding the edge, each half keeping the facet. So the boundary
+// surface, every input facet (as a union of mesh faces) and each region's volume are those of the input mesh.
 // Deterministic: ordered iteration, no global random generator; the same mesh in gives the same mesh out.
 #pragma once
 

@@ -5,16 +5,36 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <vector>
 
+#include "improve/improve.h"
 #include "qualmesh/quality.h"
 #include "qualmesh/tet_mesh.h"
 
 namespace qualmesh::detail {
+
+// Vector arithmetic of the pass (improve.cpp, edge_split.cpp).
+namespace vec3 {
+using Vec = Point3;
+inline Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline Vec add(const Vec& a, const Vec& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+inline Vec scale(const Vec& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+inline double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec cross(const Vec& a, const Vec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
+inline Vec unit(const Vec& a) {
+  const double n = norm(a);
+  return n > 0 ? scale(a, 1 / n) : Vec{0, 0, 0};
+}
+inline Vec face_normal(const Point3& a, const Point3& b, const Point3& c) { return cross(sub(b, a), sub(c, a)); }
+}  // namespace vec3
 
 using Tet4 = std::array<Index, 4>;
 using Face3 = std::array<Index, 3>;
@@ -129,5 +149,13 @@ struct WorkMesh {
 // than the smallest of the tetrahedra it replaces. Returns 0 (nothing done), 1 (2-3 flip) or n (edge
 // removal of a ring of n). The radius-edge guard (WorkMesh::rho_allowed) holds for every new tetrahedron.
 int flip_to_remove(WorkMesh& w, Index t, int max_ring);
+
+// Edge split (edge_split.cpp): splits edge uv at its midpoint, in the volume or (with `boundary`) inside one planar
+// input facet, calls `smooth` on the new vertex, and keeps the split only when the smallest angle around the edge
+// grows; else undoes it completely. `constraints` gets the new vertex's freedom; `facet_normals` are the PLC facets'
+// unit normals. Returns whether it kept the split, and in *on_boundary whether the split was inside a facet.
+bool split_edge(WorkMesh& w, TetMesh& mesh, const std::vector<Point3>& facet_normals,
+                std::vector<VertexConstraint>& constraints, Index u, Index v, bool boundary,
+                const std::function<void(Index)>& smooth, bool* on_boundary);
 
 }  // namespace qualmesh::detail
