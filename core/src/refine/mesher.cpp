@@ -114,7 +114,7 @@ void run_before_improve(const std::function<void(TetMesh&)>& hook, MeshResult& r
   }
 }
 
-// One run of the stages. Encroaching::Steiner (experimental) guarantees neither that every subsegment and subfacet
+// One run of the stages. Encroaching::Steiner (beyond the paper) guarantees neither that every subsegment and subfacet
 // is recovered nor small conflict zones: returns nothing when it gave up, and mesh_plc() runs again with the paper's
 // rule.
 std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& options, const ProgressCallback& progress,
