@@ -42,7 +42,10 @@ whether the checker passes (structure and conformity), and locally non-regular f
 Mesh_3's a regular triangulation of weights it does not write, so only QualMesh's is expected to be 0).
 Not a test: a benchmark of one run on a possibly shared machine; compare the rows of one run only.
 
-Usage: bench/bench_quality.py [--qualmesh build/converters/qualmesh] [--timeout 300] [--repeat 1] [MODEL ...]
+Usage: bench/bench_quality.py [--qualmesh build/converters/qualmesh] [--timeout 300] [--repeat 1] [--no-cgal]
+                              [--no-netgen] [--no-hxt] [--gmsh-surfaces] [MODEL ...]
+--gmsh-surfaces adds issue 16's smooth surfaces: Gmsh's default surface meshes of a cylinder (r 5, length 30) and a
+sphere (r 10), where the boundary, not the surface, decides the volume mesh's quality (alone, without MODELs).
 Default models: those of bench_tetgen.py (examples/l_bracket.poly and the closed models of ../shared/data/plc/);
 a model QualMesh cannot mesh within --timeout is listed as skipped.
 """
@@ -120,6 +123,23 @@ seconds = time.perf_counter() - start
 gmsh.write(sys.argv[2])
 gmsh.finalize()
 print("seconds", seconds)
+"""
+
+
+# Issue 16's smooth surfaces: Gmsh's own default surface meshes (STL) of a cylinder (r 5, length 30) and a sphere
+# (r 10), written into argv[1]. On them the boundary, not the surface, decides the volume mesh's quality.
+GMSH_SURFACES_SCRIPT = r"""
+import sys, gmsh
+gmsh.initialize()
+gmsh.option.setNumber("General.Terminal", 0)
+for name, make in (("cylinder", lambda: gmsh.model.occ.addCylinder(0, 0, 0, 0, 0, 30, 5)),
+                   ("sphere", lambda: gmsh.model.occ.addSphere(0, 0, 0, 10))):
+    gmsh.model.add(name)
+    make()
+    gmsh.model.occ.synchronize()
+    gmsh.model.mesh.generate(2)
+    gmsh.write(sys.argv[1] + "/" + name + ".stl")
+gmsh.finalize()
 """
 
 
@@ -269,6 +289,8 @@ def main():
     parser.add_argument("--no-cgal", action="store_true", help="leave CGAL Mesh_3 out")
     parser.add_argument("--no-netgen", action="store_true", help="leave Netgen (python3-netgen) out")
     parser.add_argument("--no-hxt", action="store_true", help="leave Gmsh's HXT (python3-gmsh) out")
+    parser.add_argument("--gmsh-surfaces", action="store_true",
+                        help="add Gmsh's default surface meshes of a cylinder (r 5, length 30) and a sphere (r 10)")
     parser.add_argument("models", nargs="*")
     args = parser.parse_args()
     args.qualmesh = str(Path(args.qualmesh).resolve())
@@ -287,7 +309,12 @@ def main():
         return False
     have_netgen = not args.no_netgen and importable("netgen.meshing", "python3-netgen")
     have_hxt = not args.no_hxt and importable("gmsh", "python3-gmsh")
-    models = [Path(m) for m in args.models] or [m for m in bench_tetgen.DEFAULT_MODELS if m.exists()]
+    models = [Path(m) for m in args.models] or (
+        [] if args.gmsh_surfaces else [m for m in bench_tetgen.DEFAULT_MODELS if m.exists()])
+    surfaces_dir = tempfile.TemporaryDirectory()
+    if args.gmsh_surfaces:
+        subprocess.run([PYTHON, "-c", GMSH_SURFACES_SCRIPT, surfaces_dir.name], check=True)
+        models += [Path(surfaces_dir.name) / "cylinder.stl", Path(surfaces_dir.name) / "sphere.stl"]
     no_pump = has_flag(args.qualmesh, "--no-pump")
     notes = []
     if not no_pump:
