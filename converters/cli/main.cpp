@@ -30,6 +30,13 @@ std::string printable(const std::string& message) {
     bool well_formed = length > 0 && i + length <= n;
     for (std::size_t k = 1; well_formed && k < length; ++k)
       well_formed = (static_cast<unsigned char>(message[i + k]) & 0xC0) == 0x80;
+    if (well_formed && length > 2) {
+      // Strict UTF-8 (RFC 3629): no overlong form (E0 80..9F, F0 80..8F), no surrogate (ED A0..BF), nothing above
+      // U+10FFFF (F4 90..BF). A terminal shows such bytes as replacement characters (fuzzing corpus, stl).
+      const auto second = static_cast<unsigned char>(message[i + 1]);
+      well_formed = !(byte == 0xE0 && second < 0xA0) && !(byte == 0xED && second > 0x9F) &&
+                    !(byte == 0xF0 && second < 0x90) && !(byte == 0xF4 && second > 0x8F);
+    }
     if (well_formed) {
       out.append(message, i, length);
       i += length;
