@@ -50,7 +50,6 @@ Default models: those of bench_tetgen.py (examples/l_bracket.poly and the closed
 a model QualMesh cannot mesh within --timeout is listed as skipped.
 """
 import argparse
-import json
 import math
 import re
 import shutil
@@ -153,13 +152,7 @@ def run(cmd, timeout, cwd=None):
     return time.perf_counter() - start, proc
 
 
-def check(qualmesh, mesh, poly):
-    """The checker's JSON report of `mesh` against `poly` (exit 0 or 3), or an error string."""
-    proc = subprocess.run([qualmesh, "check", str(mesh), "--ref", str(poly), "--json"], capture_output=True,
-                          text=True)
-    if proc.returncode not in (0, 3):
-        return f"check failed ({proc.returncode}): {proc.stderr.strip()[-100:]}"
-    return json.loads(proc.stdout)
+check = bench_tetgen.check  # the checker's JSON report of a mesh against the input, or an error string
 
 
 def has_flag(qualmesh, flag):
