@@ -26,7 +26,6 @@ Default models: the closed, valid files of ../shared/data/plc/ plus examples/l_b
 """
 import argparse
 import json
-import os
 import re
 import shutil
 import subprocess
