@@ -89,8 +89,8 @@ void improve_extracted(detail::MeshState& s, MeshResult& result, const std::vect
   s.log_line("improve: " + std::to_string(r.num_tets_touched) + " tets touched, " +
              std::to_string(r.num_vertex_moves) + " vertex moves, " + std::to_string(r.num_flips) + " flips (" +
              std::to_string(r.num_flips23) + " 2-3, " + std::to_string(r.num_edge_removals) +
-             " edge removals), " + std::to_string(r.num_insertions) + " edge splits (" + std::to_string(r.num_boundary_insertions) +
-             " inside a facet); below " +
+             " edge removals), " + std::to_string(r.num_insertions) + " edge splits (" +
+             std::to_string(r.num_boundary_insertions) + " inside a facet); below " +
              std::to_string(options.sliver_angle_deg) + " deg: " +
              std::to_string(r.num_below_before) + " -> " + std::to_string(r.num_below_after));
 }
@@ -114,9 +114,9 @@ void run_before_improve(const std::function<void(TetMesh&)>& hook, MeshResult& r
   }
 }
 
-// One run of the stages. Encroaching::Steiner (beyond the paper) guarantees neither that every subsegment and subfacet
-// is recovered nor small conflict zones: returns nothing when it gave up, and mesh_plc() runs again with the paper's
-// rule.
+// One run of the stages. Encroaching::Steiner (beyond the paper) guarantees neither that every subsegment and
+// subfacet is recovered nor small conflict zones: returns nothing when it gave up, and mesh_plc() runs again with the
+// paper's rule.
 std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& options, const ProgressCallback& progress,
                                        const LogCallback& log) {
   auto state = std::make_unique<detail::MeshState>();
