@@ -337,7 +337,7 @@ void expect_improves(const std::string& relative) {
   EXPECT_GT(improved.stats.num_tets_improved, 0u) << relative;
   EXPECT_EQ(improved.mesh.points.size(), plain.mesh.points.size() + improved.stats.num_improve_insertions) << relative;
   // Faces: each one kept, or halved by a split inside its facet (the first half keeps its index and swaps one corner
-  // for a new vertex; the second half is appended).
+  // for a new vertex; the second half is appended; a half may be halved again, so "one corner" is at least one).
   ASSERT_GE(improved.mesh.faces.size(), plain.mesh.faces.size()) << relative;
   std::size_t halved = 0;
   for (std::size_t f = 0; f < plain.mesh.faces.size(); ++f) {
@@ -349,7 +349,7 @@ void expect_improves(const std::string& relative) {
       same += a[k] == b[k];
       added += a[k] >= plain.mesh.points.size();
     }
-    EXPECT_TRUE(same == 2 && added == 1) << relative << " face " << f;
+    EXPECT_TRUE(same >= 1 && same + added == 3) << relative << " face " << f;
   }
   EXPECT_GE(improved.mesh.faces.size() - plain.mesh.faces.size(), halved) << relative;
   EXPECT_EQ(improved.tet_touches_acute_angle.size(), improved.mesh.tets.size()) << relative;
