@@ -51,7 +51,6 @@ a model QualMesh cannot mesh within --timeout is listed as skipped.
 """
 import argparse
 import math
-import re
 import shutil
 import subprocess
 import sys
@@ -251,11 +250,7 @@ def run_peer(name, script, script_args, poly, out, args):
     return report if isinstance(report, str) else (seconds, report)
 
 
-def away_from_acute(stdout):
-    """QualMesh's own count of tetrahedra below the sliver angle that touch no acute input angle (issue 4's target:
-    none), from the summary line of `qualmesh mesh`; "n/a" when the line is absent."""
-    m = re.search(r"away from acute input angles: min dihedral [^,]*, (\d+) tetrahedra below", stdout)
-    return m.group(1) if m else "n/a"
+away_from_acute = bench_tetgen.away_from_acute  # QualMesh's own count below 15 deg away from acute angles
 
 
 def row(model, tool, seconds, report, away="n/a"):
@@ -304,8 +299,8 @@ def main():
     have_hxt = not args.no_hxt and importable("gmsh", "python3-gmsh")
     models = [Path(m) for m in args.models] or (
         [] if args.gmsh_surfaces else [m for m in bench_tetgen.DEFAULT_MODELS if m.exists()])
-    surfaces_dir = tempfile.TemporaryDirectory()
     if args.gmsh_surfaces:
+        surfaces_dir = tempfile.TemporaryDirectory()  # lives until the run ends
         subprocess.run([PYTHON, "-c", GMSH_SURFACES_SCRIPT, surfaces_dir.name], check=True)
         models += [Path(surfaces_dir.name) / "cylinder.stl", Path(surfaces_dir.name) / "sphere.stl"]
     no_pump = has_flag(args.qualmesh, "--no-pump")

@@ -74,7 +74,8 @@ def check(qualmesh, mesh, poly):
 
 
 def away_from_acute(stdout):
-    """QualMesh's count of tets below 15 deg touching no acute input angle (its summary line), or "n/a"."""
+    """QualMesh's own count of tets below the sliver angle touching no acute input angle (the summary line of
+    `qualmesh mesh`; issue 4's target: none), or "n/a" when the line is absent."""
     m = re.search(r"away from acute input angles: min dihedral [^,]*, (\d+) tetrahedra below", stdout)
     return m.group(1) if m else "n/a"
 
