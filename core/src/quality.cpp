@@ -83,8 +83,9 @@ const int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}
 // The smallest and largest of the six dihedral angles, in degrees, with two atan2 calls instead of six: for angles
 // x = atan2(s1, c1) and y = atan2(s2, c2) in (0, pi) (s1, s2 > 0), x - y is in (-pi, pi), so x < y exactly when
 // sin(x - y) < 0, i.e. s1 c2 - c1 s2 < 0. A flat tetrahedron (s = 0: angles of exactly 0 or 180 degrees, whose
-// difference pi the test cannot see) or a non-finite pair falls back to measuring all six.
-std::pair<double, double> min_max_dihedral_deg(const Point3* const p[4]) {
+// difference pi the test cannot see) or a non-finite pair falls back to measuring all six. Without `with_max` the
+// largest is not measured (returned as 0): one atan2 call.
+std::pair<double, double> min_max_dihedral_deg(const Point3* const p[4], bool with_max = true) {
   AnglePair a[6];
   bool plain = true;
   for (int i = 0; i < 6; ++i) {
@@ -105,7 +106,7 @@ std::pair<double, double> min_max_dihedral_deg(const Point3* const p[4]) {
     if (a[i].sin_part * a[lo].cos_part - a[i].cos_part * a[lo].sin_part < 0) lo = i;
     if (a[i].sin_part * a[hi].cos_part - a[i].cos_part * a[hi].sin_part > 0) hi = i;
   }
-  return {std::min(180.0, to_deg(a[lo])), std::max(0.0, to_deg(a[hi]))};
+  return {std::min(180.0, to_deg(a[lo])), with_max ? std::max(0.0, to_deg(a[hi])) : 0.0};
 }
 
 }  // namespace
@@ -175,7 +176,7 @@ TetQuality tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, con
 double tet_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
   // The angles alone, as tet_quality() computes them (no circumradius: exact for a flat cell, and not needed).
   const Point3* p[4] = {&p0, &p1, &p2, &p3};
-  return min_max_dihedral_deg(p).first;
+  return min_max_dihedral_deg(p, /*with_max=*/false).first;
 }
 
 double tet_radius_edge(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {

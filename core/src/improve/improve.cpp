@@ -17,6 +17,7 @@
 #include "improve/improve.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -221,11 +222,14 @@ class Smoother {
     if (w_.rho_bound > 0)
       for (Index t : star_) old_max_rho_ = std::max(old_max_rho_, w_.radius_edge(t));
     Point3 p = start;
+    order_.clear();
+    for (Index t : star_) order_.push_back({tet_quality_at(t, start), t});
+    std::sort(order_.begin(), order_.end());
     max_below_ = star_.size();
     double q = star_min(p);
     // No move may leave more tetrahedra of the star below the threshold than before.
     max_below_ = 0;
-    for (Index t : star_) max_below_ += tet_quality_at(t, start) < threshold_;
+    for (const auto& [qt, t] : order_) max_below_ += qt < threshold_;
     const double q_start = q;
     for (int iter = 0; iter < 30; ++iter) {
       Point3 next;
@@ -247,7 +251,7 @@ class Smoother {
         if (norm(d) == 0) continue;
         for (double s : {0.1, 0.03, 0.01}) {
           const Point3 cand = add(p, scale(d, s * len_));
-          const double qc = star_min(cand);
+          const double qc = star_min(cand, q + 1e-7);
           if (qc > q + 1e-7) p = cand, q = qc;
         }
       }
@@ -281,8 +285,10 @@ class Smoother {
     return w_.rho_allowed(w_.tets[t], q, old_max_rho_);
   }
 
-  // The star's smallest angle with v at p; -1 when a tetrahedron or a boundary triangle would fold.
-  double star_min(const Point3& p) const {
+  // The star's smallest angle with v at p; -1 when a tetrahedron or a boundary triangle would fold. A candidate is
+  // kept only when this beats `bound`: so the star's tets are measured worst first (as they were at the start),
+  // and the first at or below `bound` ends the evaluation with its angle (a move rejected either way).
+  double star_min(const Point3& p, double bound = -1) const {
     for (std::size_t k = 0; k < old_normals_.size(); ++k) {
       const auto& t = mesh_.faces[w_.vertex_faces[v_][k]];
       const Point3 a = t[0] == v_ ? p : w_.point(t[0]), b = t[1] == v_ ? p : w_.point(t[1]),
@@ -294,9 +300,11 @@ class Smoother {
     }
     double q = std::numeric_limits<double>::infinity();
     std::size_t below = 0;
-    for (Index t : star_) {
+    for (const auto& [q0, t] : order_) {
       const double qt = tet_quality_at(t, p);
-      if (qt < 0 || !rho_allowed_at(t, p)) return -1;
+      if (qt < 0) return -1;
+      if (qt <= bound) return qt;
+      if (!rho_allowed_at(t, p)) return -1;
       q = std::min(q, qt);
       below += qt < threshold_;
     }
@@ -341,7 +349,7 @@ class Smoother {
     double best_q = q;
     for (double s = 0.2; s > 1e-4; s *= 0.5) {
       const Point3 cand = add(p, scale(d, s * len_));
-      const double qc = star_min(cand);
+      const double qc = star_min(cand, best_q);
       if (qc > best_q) best_q = qc, out = cand;
     }
     return best_q;
@@ -352,6 +360,7 @@ class Smoother {
   Index v_ = 0;
   VertexConstraint c_;
   std::vector<Index> star_;
+  std::vector<std::pair<double, Index>> order_;  // the star's tets, worst first at the start of smooth()
   std::vector<Vec> old_normals_;
   double sq_len_ = 0, len_ = 0;
   double threshold_;
@@ -446,6 +455,7 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
     }
     std::sort(bad.begin(), bad.end());
     std::size_t changes = 0;
+    const auto round_start = std::chrono::steady_clock::now();
     for (const auto& [q0, t] : bad) {
       if (options.cancel && options.cancel()) {
         stop = true;
@@ -482,6 +492,12 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
             moved.push_back(0);
           }
     }
+    if (options.log)
+      options.log("improve round " + std::to_string(round + 1) + ": " + std::to_string(bad.size()) +
+                  " tets below the threshold (min " + std::to_string(bad.empty() ? threshold : bad[0].first) +
+                  " deg), " + std::to_string(changes) + " changes, " +
+                  std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count()) +
+                  " s");
     if (changes == 0) break;
   }
   for (std::uint8_t m : moved) res.num_vertices_moved += m;

@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "qualmesh/plc.h"
@@ -80,6 +81,8 @@ struct ImproveOptions {
   int max_edge_ring = 7;
   // Polled once per bad tetrahedron; true stops the pass (the mesh stays valid).
   std::function<bool()> cancel;
+  // Given one line per round (may be empty): the mesher's verbose log.
+  std::function<void(const std::string&)> log;
 };
 
 struct ImproveResult {

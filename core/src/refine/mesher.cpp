@@ -73,6 +73,7 @@ void improve_extracted(detail::MeshState& s, MeshResult& result, const std::vect
   options.radius_edge_bound = kImproveRadiusEdgeFactor * s.params.radius_edge_bound;
   options.cancel = s.options.cancel;
   options.boundary_insertion = !s.options.before_improve;  // a CAD-fitted surface: no new point on a chord
+  options.log = [&s](const std::string& line) { s.log_line(line); };
   const detail::ImproveResult r = detail::improve_mesh(
       result.mesh, *s.plc, options, &result.tet_touches_acute_angle, [&](Index u, Index w) {
         // A vertex the pass added (an edge split) counts as on no input element, even inside a facet: its tets are
