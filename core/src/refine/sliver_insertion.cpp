@@ -38,6 +38,7 @@
 #include <limits>
 #include <string>
 #include <tuple>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "qualmesh/quality.h"
@@ -137,9 +138,16 @@ bool zone_leaves_region(const MeshState& s, Ch3 start, const KWeightedPoint3& wp
   return false;
 }
 
+// The smallest dihedral angle and radius-edge ratio of existing cells, measured once per sliver: the conflict
+// zones of a sliver's candidates overlap, and nothing changes while they are evaluated.
+using CellMemo = std::unordered_map<Ch3, std::pair<double, double>, CellHash>;
+
 // Checks candidate p against the sliver `sliver` (see the file comment); fills `out` when p is acceptable
-// (Refusal::None).
-Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, Candidate& out) {
+// (Refusal::None). A candidate that cannot remove `min_removed` cells below the sliver angle (its zone holds fewer,
+// or its new cells already leave fewer removed) is refused as FewRemoved as soon as that is known: the round would
+// not insert it, so the mesh is the same as with every check run (only the -v log's refusal counts differ).
+Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t min_removed, Candidate& out,
+                 CellMemo& memo) {
   const KWeightedPoint3 wp(p, 0);
   const int region = sliver->info().region;
   // Destroys the sliver; then the zone is found from it.
@@ -155,11 +163,16 @@ Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, Candidate& out) {
   double destroyed_max_radius_edge = 0;
   for (const Ch3& c : out.cells) {
     if (s.tr.is_infinite(c) || c->info().region != region) return Refusal::Region;  // one region, inside the domain
-    const TetQuality tq = tet_quality(s.point(c->vertex(0)->info()), s.point(c->vertex(1)->info()),
-                                      s.point(c->vertex(2)->info()), s.point(c->vertex(3)->info()));
-    add_cell(s, tq.min_dihedral_deg, &destroyed);
-    destroyed_max_radius_edge = std::max(destroyed_max_radius_edge, tq.radius_edge);
+    auto [it, fresh] = memo.try_emplace(c);
+    if (fresh) {
+      const TetQuality tq = tet_quality(s.point(c->vertex(0)->info()), s.point(c->vertex(1)->info()),
+                                        s.point(c->vertex(2)->info()), s.point(c->vertex(3)->info()));
+      it->second = {tq.min_dihedral_deg, tq.radius_edge};
+    }
+    add_cell(s, it->second.first, &destroyed);
+    destroyed_max_radius_edge = std::max(destroyed_max_radius_edge, it->second.second);
   }
+  if (destroyed.num_bad < min_removed) return Refusal::FewRemoved;
   // No subfacet inside the zone.
   for (const Facet3& f : internal)
     if (face_subfacet(s, f.first, f.second) != kNoIndex) return Refusal::SubfacetInside;
@@ -227,6 +240,7 @@ Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, Candidate& out) {
         return Refusal::RadiusEdge;
     }
     add_cell(s, tq.min_dihedral_deg, &out.quality);
+    if (out.quality.num_bad + min_removed > destroyed.num_bad) return Refusal::FewRemoved;
   }
   if (!(out.quality.min_dihedral_deg > destroyed.min_dihedral_deg)) return Refusal::NotBetter;
   if (!(out.quality.num_bad < destroyed.num_bad)) return Refusal::NotBetter;
@@ -289,8 +303,9 @@ Refusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std::size
   Candidate best, trial;
   bool found = false;
   Refusal furthest = Refusal::NotInConflict;
+  CellMemo memo;
   for (const KPoint3& p : candidate_points(c)) {
-    const Refusal r = evaluate(s, c, p, trial);
+    const Refusal r = evaluate(s, c, p, min_removed, trial, memo);
     if (r != Refusal::None) {
       furthest = std::max(furthest, r);
       continue;
