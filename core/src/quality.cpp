@@ -64,21 +64,28 @@ double exact_circumradius(const Point3& p0, const Point3& p1, const Point3& p2, 
 struct AnglePair {
   double sin_part, cos_part;
 };
-AnglePair dihedral_pair(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-  const Vec e = sub(b, a), u = sub(c, a), v = sub(d, a);
-  const Vec n1 = cross(e, u), n2 = cross(e, v);
-  return {norm(e) * std::fabs(dot(e, cross(u, v))), dot(n1, n2)};
-}
 
 double to_deg(const AnglePair& a) { return std::atan2(a.sin_part, a.cos_part) * kRadToDeg; }
 
-// Interior dihedral angle, in degrees, at edge (a, b) between faces (a, b, c) and (a, b, d).
-double dihedral_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-  return to_deg(dihedral_pair(a, b, c, d));
-}
-
 // Edges (i, j) with the opposite pair (k, l), in the order of tet_dihedral_angles_deg.
 const int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+
+// The six pairs, in kEdges order. For edge (a, b) with the others c, d (kEdges[i]), n1 = (b - a) x (c - a) is the
+// oriented normal of triangle (a, b, c) and n2 = (b - a) x (d - a) that of (a, b, d). So each is the normal of a face
+// with its vertices in increasing order (face k: the one opposite vertex k, 4 cross products in all) signed by the
+// parity of (a, b, c) or (a, b, d) as a permutation of that order, and |e . (u x v)| = 6 |volume| for every edge.
+void dihedral_pairs(const Point3* const p[4], AnglePair out[6]) {
+  const Vec e01 = sub(*p[1], *p[0]), e02 = sub(*p[2], *p[0]), e03 = sub(*p[3], *p[0]);
+  const Vec e12 = sub(*p[2], *p[1]), e13 = sub(*p[3], *p[1]), e23 = sub(*p[3], *p[2]);
+  const Vec f3 = cross(e01, e02), f2 = cross(e01, e03), f1 = cross(e02, e03), f0 = cross(e12, e13);
+  const double six_vol = std::fabs(dot(e01, f1));
+  out[0] = {norm(e01) * six_vol, dot(f3, f2)};
+  out[1] = {norm(e02) * six_vol, -dot(f3, f1)};
+  out[2] = {norm(e03) * six_vol, dot(f2, f1)};
+  out[3] = {norm(e12) * six_vol, dot(f3, f0)};
+  out[4] = {norm(e13) * six_vol, -dot(f2, f0)};
+  out[5] = {norm(e23) * six_vol, dot(f1, f0)};
+}
 
 // The smallest and largest of the six dihedral angles, in degrees, with two atan2 calls instead of six: for angles
 // x = atan2(s1, c1) and y = atan2(s2, c2) in (0, pi) (s1, s2 > 0), x - y is in (-pi, pi), so x < y exactly when
@@ -87,11 +94,10 @@ const int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}
 // largest is not measured (returned as 0): one atan2 call.
 std::pair<double, double> min_max_dihedral_deg(const Point3* const p[4], bool with_max = true) {
   AnglePair a[6];
+  dihedral_pairs(p, a);
   bool plain = true;
-  for (int i = 0; i < 6; ++i) {
-    a[i] = dihedral_pair(*p[kEdges[i][0]], *p[kEdges[i][1]], *p[kEdges[i][2]], *p[kEdges[i][3]]);
-    plain = plain && std::isfinite(a[i].sin_part) && std::isfinite(a[i].cos_part) && a[i].sin_part > 0;
-  }
+  for (const AnglePair& x : a)
+    plain = plain && std::isfinite(x.sin_part) && std::isfinite(x.cos_part) && x.sin_part > 0;
   if (!plain) {
     double lo = 180, hi = 0;
     for (const AnglePair& x : a) {
@@ -113,8 +119,10 @@ std::pair<double, double> min_max_dihedral_deg(const Point3* const p[4], bool wi
 
 std::array<double, 6> tet_dihedral_angles_deg(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
   const Point3* p[4] = {&p0, &p1, &p2, &p3};
+  AnglePair a[6];
+  dihedral_pairs(p, a);
   std::array<double, 6> angles;
-  for (int i = 0; i < 6; ++i) angles[i] = dihedral_deg(*p[kEdges[i][0]], *p[kEdges[i][1]], *p[kEdges[i][2]], *p[kEdges[i][3]]);
+  for (int i = 0; i < 6; ++i) angles[i] = to_deg(a[i]);
   return angles;
 }
 

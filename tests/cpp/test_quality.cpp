@@ -123,6 +123,41 @@ TEST(TetQuality, ExtremeDihedralAnglesMatchTheSixAngles) {
   }
 }
 
+TEST(TetQuality, SixAnglesMatchThePerEdgeFormula) {
+  // The six angles come from four shared face normals (quality.cpp dihedral_pairs); here each is measured on its own,
+  // from its edge e = b - a and the two other corners c, d: atan2(|e| |e . (u x v)|, (e x u) . (e x v)).
+  auto sub = [](const Point3& a, const Point3& b) { return Point3{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
+  auto cross = [](const Point3& a, const Point3& b) {
+    return Point3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  };
+  auto dot = [](const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const int edges[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+  std::uint64_t state = 777;
+  auto next = [&state]() {  // deterministic, in [-1, 1)
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) / double(1ull << 52) - 1.0;
+  };
+  double worst = 0;
+  for (int i = 0; i < 5000; ++i) {
+    std::array<Point3, 4> t;
+    for (auto& p : t) p = {next(), next(), next()};
+    if (i % 3 == 1) t[3] = {t[2][0] + 1e-3 * next(), t[2][1] + 1e-3 * next(), t[2][2] + 1e-3 * next()};  // short edge
+    const std::array<double, 6> six = tet_dihedral_angles_deg(t[0], t[1], t[2], t[3]);
+    for (int k = 0; k < 6; ++k) {
+      const Point3 &a = t[edges[k][0]], &b = t[edges[k][1]], &c = t[edges[k][2]], &d = t[edges[k][3]];
+      const Point3 e = sub(b, a), u = sub(c, a), v = sub(d, a);
+      const double expected = std::atan2(std::sqrt(dot(e, e)) * std::fabs(dot(e, cross(u, v))),
+                                         dot(cross(e, u), cross(e, v))) * 180.0 / 3.14159265358979323846;
+      worst = std::max(worst, std::fabs(six[k] - expected));
+      ASSERT_NEAR(six[k], expected, 1e-7) << "tet " << i << " edge " << k;
+    }
+  }
+  // Not vacuous: the tets span every angle, and a wrong sign or face would be off by degrees.
+  EXPECT_LT(worst, 1e-7);
+  EXPECT_NEAR(tet_dihedral_angles_deg({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1})[0], 90.0, 1e-12);
+  EXPECT_NEAR(tet_dihedral_angles_deg({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1})[3], 54.735610317245346, 1e-9);
+}
+
 TEST(TetQuality, OrientationSign) {
   const Point3 o{0, 0, 0}, x{2, 0, 0}, y{0, 3, 0}, z{0, 0, 4};
   EXPECT_NEAR(tet_quality(o, x, y, z).volume, 4.0, 1e-14);
