@@ -13,7 +13,9 @@
 // pseudo-random trial moves are tried, as CGAL's perturb_mesh_3 does (Sliver_perturber's random perturbation).
 // A move is accepted only when the star's smallest angle strictly grows, no more of the star's tetrahedra are
 // below the threshold than before, every tetrahedron of the star stays positively oriented (by a margin) and every
-// boundary triangle of the star keeps its orientation and its plane.
+// boundary triangle of the star keeps its orientation and its plane. A vertex inside a curved CAD face (OnSurface)
+// moves in its tangent plane, each position projected onto the CAD surface (MeshOptions::project_to_boundary) before
+// it is judged; its boundary triangles keep their orientation and turn by at most 30 degrees.
 #include "improve/improve.h"
 
 #include <algorithm>
@@ -105,7 +107,7 @@ double oriented_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point
   return tet_min_dihedral_deg(p0, p1, p2, p3);
 }
 
-std::vector<VertexConstraint> classify_vertices(const TetMesh& mesh, const Plc& plc) {
+std::vector<VertexConstraint> classify_vertices(const TetMesh& mesh, const Plc& plc, bool curved) {
   const std::size_t nv = mesh.points.size();
   std::vector<VertexConstraint> out(nv);
   const std::vector<std::uint8_t> is_input = input_vertex_flags(mesh, plc);
@@ -189,6 +191,24 @@ std::vector<VertexConstraint> classify_vertices(const TetMesh& mesh, const Plc& 
         c = {VertexFreedom::OnSegment, unit(sub(mesh.points[creases[1]], mesh.points[creases[0]]))};
     }
   }
+  if (!curved || mesh.face_marker.size() != mesh.faces.size()) return out;
+  for (Index v = 0; v < nv; ++v) {
+    const auto& faces = vfaces[v];
+    if (out[v].freedom != VertexFreedom::Fixed || is_input[v] || faces.empty() || !marked[v].empty()) continue;
+    // Inside one CAD face: every incident face has its marker.
+    const int face = mesh.face_marker[faces[0]];
+    Vec n{0, 0, 0}, first{0, 0, 0};
+    bool one = face > 0;
+    for (Index f : faces) {
+      const auto& t = mesh.faces[f];
+      Vec fn = face_normal(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+      if (norm(first) == 0) first = fn;
+      if (dot(fn, first) < 0) fn = scale(fn, -1);  // whatever the faces' orientation, one side
+      n = add(n, fn);
+      one = one && mesh.face_marker[f] == face;
+    }
+    if (one && norm(n) > 0) out[v] = {VertexFreedom::OnSurface, unit(n), face};
+  }
   return out;
 }
 
@@ -197,13 +217,16 @@ namespace {
 // Smoothing of one vertex within its freedom (see the file comment). Returns whether it moved.
 class Smoother {
  public:
-  Smoother(WorkMesh& w, const TetMesh& mesh, double threshold) : w_(w), mesh_(mesh), threshold_(threshold) {}
+  Smoother(WorkMesh& w, const TetMesh& mesh, double threshold,
+           const std::function<bool(int, int, Point3&)>& project_to_boundary)
+      : w_(w), mesh_(mesh), threshold_(threshold), project_to_boundary_(project_to_boundary) {}
 
   bool smooth(Index v, const VertexConstraint& c, unsigned round) {
     v_ = v;
     c_ = c;
     star_ = w_.incident[v];
     if (star_.empty() || c.freedom == VertexFreedom::Fixed) return false;
+    if (on_cad() && !project_to_boundary_) return false;
     const Point3 start = w_.point(v);
     sq_len_ = std::numeric_limits<double>::infinity();
     for (Index t : star_)
@@ -250,8 +273,8 @@ class Smoother {
         d = unit(project(d));
         if (norm(d) == 0) continue;
         for (double s : {0.1, 0.03, 0.01}) {
-          const Point3 cand = add(p, scale(d, s * len_));
-          const double qc = star_min(cand, q + 1e-7);
+          Point3 cand = add(p, scale(d, s * len_));
+          const double qc = try_candidate(cand, q + 1e-7);
           if (qc > q + 1e-7) p = cand, q = qc;
         }
       }
@@ -263,10 +286,26 @@ class Smoother {
   }
 
  private:
+  bool on_cad() const { return c_.freedom == VertexFreedom::OnSurface; }
+
+  // A point of the vertex's line, plane or tangent plane made a position it may take: on its CAD surface for
+  // OnSurface (false when the projection fails), as it is otherwise.
+  bool place(Point3& cand) const { return !on_cad() || project_to_boundary_(0, c_.cad_face, cand); }
+
+  // The star's smallest angle at candidate `cand` (star_min), with `cand` first made a position the vertex may take
+  // (place); -1 when it cannot be. OpenCASCADE's projection costs far more than the star: a candidate of a CAD vertex
+  // whose tangent point does not beat `bound` is dropped unprojected (the surface is within the square of the step
+  // of its tangent plane there, and most random trials fail by far), so only promising ones are projected and judged.
+  double try_candidate(Point3& cand, double bound) const {
+    if (on_cad() && !(star_min(cand, bound) > bound)) return -1;
+    return place(cand) ? star_min(cand, bound) : -1;
+  }
+
   Vec project(const Vec& g) const {
     switch (c_.freedom) {
       case VertexFreedom::Interior: return g;
-      case VertexFreedom::InFacet: return sub(g, scale(c_.direction, dot(g, c_.direction)));
+      case VertexFreedom::InFacet:
+      case VertexFreedom::OnSurface: return sub(g, scale(c_.direction, dot(g, c_.direction)));
       case VertexFreedom::OnSegment: return scale(c_.direction, dot(g, c_.direction));
       case VertexFreedom::Fixed: break;
     }
@@ -293,10 +332,15 @@ class Smoother {
       const auto& t = mesh_.faces[w_.vertex_faces[v_][k]];
       const Point3 a = t[0] == v_ ? p : w_.point(t[0]), b = t[1] == v_ ? p : w_.point(t[1]),
                    c = t[2] == v_ ? p : w_.point(t[2]);
-      // Same orientation, and (a safety net for conformity) the same plane: the normal keeps its direction.
+      // Same orientation, and (a safety net for conformity) the same plane: the normal keeps its direction. On a
+      // curved surface the face turns with it: there its normal may turn by up to 30 degrees.
       const Vec n = face_normal(a, b, c), &o = old_normals_[k];
       if (!(dot(n, o) > 1e-6 * dot(o, o))) return -1;
-      if (!(dot(cross(n, o), cross(n, o)) <= 1e-16 * dot(n, n) * dot(o, o))) return -1;
+      if (on_cad()) {
+        if (!(dot(n, o) > 0.866 * norm(n) * norm(o))) return -1;
+      } else if (!(dot(cross(n, o), cross(n, o)) <= 1e-16 * dot(n, n) * dot(o, o))) {
+        return -1;
+      }
     }
     double q = std::numeric_limits<double>::infinity();
     std::size_t below = 0;
@@ -348,8 +392,8 @@ class Smoother {
     if (norm(d) == 0) return q;
     double best_q = q;
     for (double s = 0.2; s > 1e-4; s *= 0.5) {
-      const Point3 cand = add(p, scale(d, s * len_));
-      const double qc = star_min(cand, best_q);
+      Point3 cand = add(p, scale(d, s * len_));
+      const double qc = try_candidate(cand, best_q);
       if (qc > best_q) best_q = qc, out = cand;
     }
     return best_q;
@@ -364,6 +408,7 @@ class Smoother {
   std::vector<Vec> old_normals_;
   double sq_len_ = 0, len_ = 0;
   double threshold_;
+  const std::function<bool(int, int, Point3&)>& project_to_boundary_;
   double old_max_rho_ = 0;  // the star's largest radius-edge ratio before the move (the guard's cap)
   std::size_t max_below_ = 0;
 };
@@ -400,11 +445,12 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
   res.num_below_after = res.num_below_before;
   if (res.num_below_before == 0) return res;
 
-  std::vector<VertexConstraint> constraints = classify_vertices(mesh, plc);
+  std::vector<VertexConstraint> constraints = classify_vertices(mesh, plc, bool(options.project_to_boundary));
   for (const VertexConstraint& c : constraints) {
     res.num_fixed += c.freedom == VertexFreedom::Fixed;
     res.num_on_segment += c.freedom == VertexFreedom::OnSegment;
     res.num_in_facet += c.freedom == VertexFreedom::InFacet;
+    res.num_on_surface += c.freedom == VertexFreedom::OnSurface;
     res.num_interior += c.freedom == VertexFreedom::Interior;
   }
   WorkMesh w;
@@ -443,7 +489,7 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
   std::vector<Vec> facet_normals;
   facet_normals.reserve(plc.facets.size());
   for (const Facet& f : plc.facets) facet_normals.push_back(facet_normal(plc, f));
-  Smoother smoother(w, mesh, threshold);
+  Smoother smoother(w, mesh, threshold, options.project_to_boundary);
   std::vector<std::uint8_t> moved(mesh.points.size(), 0);
   bool stop = false;
   for (int round = 0; round < options.max_rounds && !stop; ++round) {

@@ -74,6 +74,7 @@ void improve_extracted(detail::MeshState& s, MeshResult& result, const std::vect
   options.cancel = s.options.cancel;
   options.boundary_insertion = !s.options.before_improve;  // a CAD-fitted surface: no new point on a chord
   options.log = [&s](const std::string& line) { s.log_line(line); };
+  options.project_to_boundary = s.options.project_to_boundary;  // CAD inputs: vertices move on curved faces
   const detail::ImproveResult r = detail::improve_mesh(
       result.mesh, *s.plc, options, &result.tet_touches_acute_angle, [&](Index u, Index w) {
         // A vertex the pass added (an edge split) counts as on no input element, even inside a facet: its tets are
@@ -91,7 +92,8 @@ void improve_extracted(detail::MeshState& s, MeshResult& result, const std::vect
              std::to_string(r.num_vertex_moves) + " vertex moves, " + std::to_string(r.num_flips) + " flips (" +
              std::to_string(r.num_flips23) + " 2-3, " + std::to_string(r.num_edge_removals) +
              " edge removals), " + std::to_string(r.num_insertions) + " edge splits (" +
-             std::to_string(r.num_boundary_insertions) + " inside a facet); below " +
+             std::to_string(r.num_boundary_insertions) + " inside a facet); " + std::to_string(r.num_on_surface) +
+             " vertices movable on curved CAD faces; below " +
              std::to_string(options.sliver_angle_deg) + " deg: " +
              std::to_string(r.num_below_before) + " -> " + std::to_string(r.num_below_after));
 }
