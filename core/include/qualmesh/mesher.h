@@ -95,8 +95,9 @@ struct MeshOptions {
   bool sliver_insertion = true;
   // Last, beyond the paper (issue 16): where tetrahedra below sliver_angle_deg are left after extraction, their
   // vertices are moved (input vertices never; segment vertices along their segment, facet vertices within their
-  // facet, and with project_to_boundary a vertex inside a curved CAD face on that face), flips are made inside regions away from boundary and internal faces, and interior edges of slivers
-  // are split (a free vertex added), each only when the smallest dihedral angle of what it changes grows.
+  // facet, and with project_to_boundary a vertex inside a curved CAD face on that face), flips are made inside
+  // regions away from boundary and internal faces, and interior edges of slivers are split (a free vertex added),
+  // each only when the smallest dihedral angle of what it changes grows.
   // Conformity stays exact; the touched tetrahedra (MeshStats::num_tets_improved) are no longer weighted Delaunay,
   // and their radius-edge bound away from acute input angles is kImproveRadiusEdgeFactor * radius_edge_bound
   // instead of rho0 (a changed tet above that is allowed only where its shortest edge is forced by an acute input
