@@ -266,7 +266,9 @@ TEST(Improve, ConstrainedVerticesMoveOnlyAlongTheirLineOrPlane) {
           moved_on_boundary += p != o;
           break;
         }
-        case VertexFreedom::OnSurface: ADD_FAILURE() << name << " vertex " << v << ": no projector, no CAD freedom"; break;
+        case VertexFreedom::OnSurface:
+          ADD_FAILURE() << name << " vertex " << v << ": no projector, so no vertex moves on a CAD surface";
+          break;
         case VertexFreedom::Interior: break;
       }
     }

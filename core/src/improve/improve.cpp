@@ -538,12 +538,12 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
             moved.push_back(0);
           }
     }
-    if (options.log)
+    if (options.log) {
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count();
       options.log("improve round " + std::to_string(round + 1) + ": " + std::to_string(bad.size()) +
                   " tets below the threshold (min " + std::to_string(bad.empty() ? threshold : bad[0].first) +
-                  " deg), " + std::to_string(changes) + " changes, " +
-                  std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count()) +
-                  " s");
+                  " deg), " + std::to_string(changes) + " changes, " + std::to_string(seconds) + " s");
+    }
     if (changes == 0) break;
   }
   for (std::uint8_t m : moved) res.num_vertices_moved += m;
