@@ -10,7 +10,8 @@
 //     oriented, faces still match;
 //   - the minimum dihedral angle over all tets never decreases and the count below the threshold decreases;
 //   - determinism: the same mesh in gives the same bytes out;
-//   - on real inputs (joint.off, fandisk.off through mesh_plc): the same figures, default against --no-improve.
+//   - on real inputs (joint.off, fandisk.off through mesh_plc): the same figures, default against --no-improve;
+//   - with a projector (a sphere standing in for a curved CAD face): nodes inside the face move and stay on it.
 #include <gtest/gtest.h>
 
 #include <CGAL/Delaunay_triangulation_3.h>
