@@ -411,6 +411,8 @@ TEST(ImproveReal, BeforeImproveHookRunsOnceOnTheExtractedMesh) {
 
 namespace {
 
+double radius(const Point3& p) { return std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]); }
+
 // A sphere of radius 10 about the origin as a PLC: a twice-subdivided icosahedron (162 vertices on the sphere), each
 // triangle its own facet with marker 1, as the CAD front end writes a curved face's triangles.
 Plc icosphere() {
@@ -439,7 +441,7 @@ Plc icosphere() {
   }
   Plc plc;
   for (const Point3& p : v) {
-    const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    const double r = radius(p);
     plc.vertices.push_back({10 * p[0] / r, 10 * p[1] / r, 10 * p[2] / r});
   }
   for (const auto& t : tri) {
@@ -451,15 +453,13 @@ Plc icosphere() {
   return plc;
 }
 
-bool onto_sphere(int face, Point3& p) {
-  if (face != 1) return false;
-  const double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-  if (!(r > 0)) return false;
+// The projector of MeshOptions::project_to_boundary for that sphere: face 1 is the sphere, there is no CAD edge.
+bool onto_sphere(int edge, int face, Point3& p) {
+  const double r = radius(p);
+  if (edge != 0 || face != 1 || !(r > 0)) return false;
   for (double& x : p) x *= 10 / r;
   return true;
 }
-
-double radius(const Point3& p) { return std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]); }
 
 // ImproveOptions::project_to_boundary: the vertices inside a curved face (one face marker around them, on no marked
 // edge) are OnSurface and move on the surface the projector gives: each stays on it (here the sphere, to rounding),
@@ -471,7 +471,7 @@ TEST(Improve, VerticesInsideACurvedFaceMoveOnItsSurface) {
   qualmesh::MeshOptions options;
   options.improve = false;
   options.max_edge_length = 3;  // boundary and interior Steiner points
-  options.project_to_boundary = [](int edge, int face, Point3& p) { return edge == 0 && onto_sphere(face, p); };
+  options.project_to_boundary = onto_sphere;
   const qualmesh::MeshResult plain = qualmesh::mesh_plc(plc, options);
   ASSERT_EQ(plain.status, qualmesh::MeshStatus::Ok);
   for (const auto& f : plain.mesh.faces)
@@ -485,7 +485,7 @@ TEST(Improve, VerticesInsideACurvedFaceMoveOnItsSurface) {
   const auto r_fixed = qualmesh::detail::improve_mesh(fixed, plc, improve);
   EXPECT_EQ(r_fixed.num_on_surface, 0u);
 
-  improve.project_to_boundary = [](int edge, int face, Point3& p) { return edge == 0 && onto_sphere(face, p); };
+  improve.project_to_boundary = onto_sphere;
   TetMesh mesh = plain.mesh;
   const auto classes = qualmesh::detail::classify_vertices(mesh, plc, true);
   const auto r = qualmesh::detail::improve_mesh(mesh, plc, improve);

@@ -226,7 +226,6 @@ class Smoother {
     c_ = c;
     star_ = w_.incident[v];
     if (star_.empty() || c.freedom == VertexFreedom::Fixed) return false;
-    if (on_cad() && !project_to_boundary_) return false;
     const Point3 start = w_.point(v);
     sq_len_ = std::numeric_limits<double>::infinity();
     for (Index t : star_)
