@@ -11,7 +11,8 @@
 //   - RefineParams and EncroachmentPolicy derive what the options say;
 //   - the same input gives the same mesh twice in one process, under either encroachment rule;
 //   - re-refining a refined mesh adds nothing (CGAL Mesh_3's test_meshing_utilities property);
-//   - boundary points projected onto a curved surface (MeshOptions::project_to_boundary) land on it.
+//   - boundary points projected onto a curved surface (MeshOptions::project_to_boundary) land on it;
+//   - the split floor keeps small encroached elements, and splits below it past a budget stop a projected run.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -532,3 +533,24 @@ TEST(Levels, SplitFloorKeepsSmallEncroachedElementsAndConformity) {
 }
 
 }  // namespace
+
+// MeshOptions::project_to_boundary's safety net in Rules 1-2 (refine_state.h, count_below_floor_split): splits below
+// the split floor are counted, and past kBelowFloorSplitBudget plus the input's vertex count, with a projector only,
+// every stage stops as at the vertex limit and mesh_plc() meshes again without the projection. (The runaway it
+// catches: part.step with a surface made without brep_to_plc.cpp's cross-face edge splits and the OCC projector,
+// where one subsegment was split to 2e-4 against a floor of 0.35; a synthetic projector did not reproduce it.)
+TEST(Levels, SplitsBelowTheFloorPastTheBudgetStopAProjectedRun) {
+  for (const bool projected : {false, true}) {
+    MeshOptions options;
+    options.min_split_length = 0.01;
+    if (projected) options.project_to_boundary = [](int, int, Point3&) { return false; };
+    Engine e(box({0, 0, 0}, {1, 1, 1}), options);
+    const std::size_t budget = d::kBelowFloorSplitBudget + e.plc.vertices.size();
+    for (std::size_t n = 0; n < budget; ++n) e.s.count_below_floor_split();
+    EXPECT_FALSE(e.s.projection_runaway);
+    EXPECT_FALSE(e.s.vertex_limit_reached);
+    e.s.count_below_floor_split();
+    EXPECT_EQ(e.s.projection_runaway, projected);
+    EXPECT_EQ(e.s.vertex_limit_reached, projected);
+  }
+}

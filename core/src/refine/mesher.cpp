@@ -63,6 +63,17 @@ bool steiner_holds(detail::MeshState& s, const char* when) {
   return false;
 }
 
+// MeshOptions::project_to_boundary's safety net in Rules 1-2 (MeshState::count_below_floor_split): true (and a log
+// line) when `stage` split more elements below the floor than the budget allows; mesh_plc() meshes again without
+// the projection.
+bool refinement_ran_away(detail::MeshState& s, const char* stage) {
+  if (!s.projection_runaway) return false;
+  s.log_line(std::string(stage) + ": " + std::to_string(s.below_floor_splits) +
+             " splits below the split floor with boundary points projected onto the CAD surface; meshing again "
+             "without it");
+  return true;
+}
+
 // The improvement pass (improve.h, beyond the paper) on the extracted mesh, with extract.cpp's acute-angle criterion
 // for the tets it changes: mesh vertex ids map back to the engine's in order (extraction keeps the engine's order).
 // `engine_id`: the engine's vertex of each mesh point, found before MeshOptions::before_improve moved any.
@@ -146,7 +157,8 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
   begin_stage(s, MeshStage::Boundary);
   detail::enqueue_initial_boundary(s);
   detail::run_refinement(s, false);
-  if (!steiner_holds(s, "after the boundary stage")) return std::nullopt;
+  if (refinement_ran_away(s, "the boundary stage") || !steiner_holds(s, "after the boundary stage"))
+    return std::nullopt;
   s.stats.seconds_boundary = seconds_since(t);
 
   if (!s.vertex_limit_reached) {
@@ -159,7 +171,7 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
     begin_stage(s, MeshStage::Refinement);
     detail::enqueue_all_tets(s);
     detail::run_refinement(s, true);
-    if (!steiner_holds(s, "after refinement")) return std::nullopt;
+    if (refinement_ran_away(s, "refinement") || !steiner_holds(s, "after refinement")) return std::nullopt;
     if (!s.region_pending.empty()) {
       std::vector<detail::Ch3> assigned;
       detail::flood_pending_regions(s, assigned);

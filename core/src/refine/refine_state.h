@@ -30,6 +30,12 @@
 
 namespace qualmesh::detail {
 
+// MeshState::count_below_floor_split's budget, beyond the number of input vertices. Healthy CAD runs make a few
+// dozen such splits (wrenchnut.stp at its default size 107, part.step 51, Zylkopf.stp 7); the runaways make
+// thousands: part.step's surface without the cross-face edge splits (brep_to_plc.cpp) had a subsegment split down
+// to 2e-4 against a floor of 0.35, 9500 Rule 1 points and counting.
+inline constexpr std::size_t kBelowFloorSplitBudget = 2000;
+
 enum class VertexKind : std::uint8_t { Input, Segment, Facet, Volume };
 
 struct VertexRecord {
@@ -110,6 +116,14 @@ struct MeshState {
   // meshes again without the projection.
   std::size_t pumping_vertex_budget = static_cast<std::size_t>(-1);
   bool projection_runaway = false;
+  // Rules 1-2 splits of elements below MeshOptions::min_split_length (forced by a missing subsegment or subfacet,
+  // or by a missing subfacet's centre). With MeshOptions::project_to_boundary, more than
+  // kBelowFloorSplitBudget of them is taken for a runaway as well (count_below_floor_split).
+  std::size_t below_floor_splits = 0;
+  void count_below_floor_split() {
+    if (++below_floor_splits > kBelowFloorSplitBudget + plc->vertices.size() && options.project_to_boundary)
+      projection_runaway = vertex_limit_reached = true;
+  }
   std::size_t cancel_polls = 0;
 
   // Polls MeshOptions::cancel every 64 calls; true (and vertex_limit_reached) once it has said stop.

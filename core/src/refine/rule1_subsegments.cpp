@@ -75,6 +75,9 @@ void Rule1Subsegments::refine_one(MeshState& s) {
       return;
     }
   }
+  if (s.params.sq_min_split > 0 &&
+      s.params.subsegment_below_floor(CGAL::squared_distance(s.kpoint(e.u), s.kpoint(e.v))))
+    s.count_below_floor_split();  // forced by a missing subfacet, or the subsegment is missing
   double t = 0;
   const Point3 p = refinement_point(s, e.segment, e.u, e.v, &t);
   ConflictZone cz;

@@ -107,6 +107,9 @@ bool split_subfacet(MeshState& s, Rule2Subfacets& level, Index facet, const std:
   const Conflict conflict = level.conflict(s, facet, abc, center, cz, cand);
   if (conflict == Conflict::SplitSubsegment) ++s.stats.num_rejected_circumcenters;
   if (conflict != Conflict::None) return false;
+  if (s.params.sq_min_split > 0 &&
+      s.params.subfacet_below_floor(CGAL::squared_radius(s.kpoint(abc[0]), s.kpoint(abc[1]), s.kpoint(abc[2]))))
+    s.count_below_floor_split();  // a missing subfacet below the floor
   const Index w = add_vertex(s, to_point3(center), VertexKind::Facet, facet);
   ++s.stats.num_rule2_insertions;
   notify_insertion(s, insert_vertex(s, w, cz, cand, kUnknownRegion));
