@@ -62,12 +62,11 @@ constexpr double kPlanarityTolerance = 1e-7;
 constexpr double kPolygonPlanarityTolerance = 1e-11;
 // Sized surface mesh: relative deflection of the coarse BRepMesh run whose triangles seed the region search only.
 constexpr double kSeedRelativeDeflection = 0.005;
-// Sized surface mesh: rounds of edge splits asked by the curved faces' refinement, and the shortest piece split
-// (relative to the face's size). Planar faces ask for none: their mesh only places interior nodes, which the volume
-// mesher's facet triangulation joins to the edge chains as they are (on the cantilever beam, splits asked by its
-// 10 mm wide faces cascaded to 789 surface nodes at size 9, against Gmsh's 116).
-constexpr int kMaxSplitPasses = 6;
-constexpr double kMinSplitFactor = 0.15;
+// Sized surface mesh: the edge length the isotropic remeshing of a face aims at, relative to the face's size. Gmsh's
+// surfaces at -clmax h have edges a little shorter than h on average (cylinder.brep at 5: 221 surface nodes against
+// 161 with a target of h). 0.9 gives Gmsh's volume node count within 0.74-1.25x on tests/data/cad's cylinder at 5
+// and 2.5 and torus at 2 (1.0: 0.66-1.08x; 0.85: 0.80-1.40x).
+constexpr double kRemeshLengthFactor = 0.9;
 
 Point3 to_point(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 
@@ -138,11 +137,14 @@ class PlcBuilder {
     return std::move(model_);
   }
 
-  // The faces are meshed, the edge pieces a curved face's refinement needs split are split (Chew's rule across
-  // faces: the chain is shared, so every face using the edge sees the new point), and the faces meshed again, until
-  // no piece is asked for (at most kMaxSplitPasses); then every face is remeshed and becomes its facets, in face
-  // order: a planar face one polygonal facet with its interior nodes as isolated vertices (add_planar_face), or its
-  // triangles when its wires make no planar polygon; a curved face its triangles.
+  // Every face is meshed once on its edge chains as the size field cut them, then remeshed, and becomes its facets,
+  // in face order: a planar face one polygonal facet with its interior nodes as isolated vertices (add_planar_face),
+  // or its triangles when its wires make no planar polygon; a curved face its triangles. The chains are not split
+  // for the faces' bad triangles: doing so (Chew's rule across faces, in up to 6 rounds of meshing again) cascaded
+  // through the faces sharing an edge and made the volume mesh finer and worse (--size at Gmsh's default, same
+  // run, 6 rounds -> none: t20_data.step 3412 -> 754 nodes and 172 -> 30 tets below 10 deg, Kurbelwelle.stp
+  // 4251 -> 2887 and 134 -> 6, the pump carter 12593 -> 7911 and 1776 -> 463; part.step 1401 -> 1268 and 22 -> 24).
+  // The volume mesher's Rules 1 and 2 split the boundary where its elements need it, onto the CAD surface.
   void mesh_sized_faces(const SizeField& field) {
     const int num_faces = faces_.Extent();
     std::vector<char> planar(num_faces + 1, 0);
@@ -151,28 +153,8 @@ class PlcBuilder {
     std::vector<std::vector<SurfaceTriangle>> triangles(num_faces + 1);
     std::vector<FaceMeshStats> stats(num_faces + 1);
     std::vector<Point3>& vertices = model_.plc.vertices;
-    std::size_t boundary_end = 0;
-    for (int pass = 0;; ++pass) {
-      boundary_end = vertices.size();
-      std::vector<EdgeSplit> splits;
-      for (int f = 1; f <= num_faces; ++f) {
-        stats[f] = {};
-        triangles[f] = mesh_face_on_surface(f, field, stats[f], !planar[f]);
-        splits.insert(splits.end(), stats[f].splits.begin(), stats[f].splits.end());
-      }
-      std::sort(splits.begin(), splits.end());
-      splits.erase(std::unique(splits.begin(), splits.end()), splits.end());
-      if (splits.empty() || pass + 1 >= kMaxSplitPasses) break;
-      vertices.resize(boundary_end);  // the faces' interior nodes go; they are made again
-      for (auto it = splits.rbegin(); it != splits.rend(); ++it) {  // from the back: indices stay valid
-        std::vector<Index>& chain = edge_chains_[it->edge_number];
-        std::vector<double>& params = edge_params_[it->edge_number];
-        const double t = 0.5 * (params[it->index] + params[it->index + 1]);
-        const BRepAdaptor_Curve curve(TopoDS::Edge(edges_(it->edge_number).Oriented(TopAbs_FORWARD)));
-        chain.insert(chain.begin() + it->index + 1, add_vertex(to_point(curve.Value(t))));
-        params.insert(params.begin() + it->index + 1, t);
-      }
-    }
+    const std::size_t boundary_end = vertices.size();
+    for (int f = 1; f <= num_faces; ++f) triangles[f] = mesh_face_on_surface(f, field, stats[f]);
     remesh_faces(field, boundary_end, triangles, stats);
     std::vector<double> tolerances(num_faces + 1, 0);
     double max_chord_error = 0;
@@ -219,8 +201,8 @@ class PlcBuilder {
     region_margin_ = 2 * std::max(max_chord_error, 1e-9 * diagonal_);
   }
 
-  // The faces' triangles remeshed on their surfaces (face_remesh.cpp, isotropic remeshing towards the face's size;
-  // the edge chains stay): nodes [0, boundary_end) are CAD vertices and chain nodes, the rest the faces' interior
+  // The faces' triangles remeshed on their surfaces (face_remesh.cpp, isotropic remeshing towards
+  // kRemeshLengthFactor times the face's size; the edge chains stay): nodes [0, boundary_end) are CAD vertices and chain nodes, the rest the faces' interior
   // nodes, made anew here face by face.
   void remesh_faces(const SizeField& field, std::size_t boundary_end,
                     std::vector<std::vector<SurfaceTriangle>>& triangles, std::vector<FaceMeshStats>& stats) {
@@ -238,7 +220,7 @@ class PlcBuilder {
     for (int f = 1; f < static_cast<int>(triangles.size()); ++f) {
       if (triangles[f].empty()) continue;
       const TopoDS_Face face = TopoDS::Face(faces_(f).Oriented(TopAbs_FORWARD));
-      triangles[f] = remesh_face_on_surface(face, face_size(f, field), triangles[f], fixed, is_piece, source,
+      triangles[f] = remesh_face_on_surface(face, kRemeshLengthFactor * face_size(f, field), triangles[f], fixed, is_piece, source,
                                             vertices, stats[f]);
       num_remeshed += stats[f].remeshed;
       num_partial += stats[f].remeshed && stats[f].num_remesh_rounds < kRemeshRounds;
@@ -289,13 +271,10 @@ class PlcBuilder {
     return coarsest > 0 ? std::min(field.face_size(f), coarsest) : field.face_size(f);
   }
 
-  // One face's mesh on its surface (face_mesh.h); with `ask_splits` false it asks for no edge split.
-  std::vector<SurfaceTriangle> mesh_face_on_surface(int f, const SizeField& field, FaceMeshStats& stats,
-                                                    bool ask_splits = true) {
+  // One face's mesh on its surface (face_mesh.h).
+  std::vector<SurfaceTriangle> mesh_face_on_surface(int f, const SizeField& field, FaceMeshStats& stats) {
     const TopoDS_Face face = TopoDS::Face(faces_(f).Oriented(TopAbs_FORWARD));
-    const double min_split =
-        ask_splits ? kMinSplitFactor * face_size(f, field) : std::numeric_limits<double>::infinity();
-    return mesh_curved_face(face, f, face_size(f, field), min_split, chain_for(),
+    return mesh_curved_face(face, f, face_size(f, field), chain_for(),
                             [this](const TopoDS_Vertex& v) { return vertex_id(v); }, model_.plc.vertices, file_,
                             stats);
   }

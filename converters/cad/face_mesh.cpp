@@ -11,9 +11,10 @@
 // unbounded one at a sphere's poles). A triangle is bad when its 3D circumradius exceeds kRadiusFactor * size or its
 // smallest angle in the plane is below kMinAngleDeg; its plane circumcentre is inserted (the surface point over it,
 // wrapped into the face's period across a seam; try_insert can also project a 3D centre, unused). A centre outside the
-// face or in the diametral circle of a boundary piece is not inserted; the piece is reported instead (EdgeSplit),
-// and brep_to_plc.cpp splits that CAD edge's chain for every face that uses it and meshes the faces again (Chew's
-// rule across faces). New nodes are points of the surface, exactly.
+// face or in the diametral circle of a boundary piece is not inserted, and the edge chains stay as the size field cut
+// them: splitting the pieces such centres encroach (Chew's rule, shared by every face of the edge and meshed again)
+// cascaded across faces, and the volume mesh then had 1.1-4.5x the nodes and mostly more bad tets (brep_to_plc.cpp,
+// kMaxSplitPasses, removed). New nodes are points of the surface, exactly.
 // CGAL first: OpenCASCADE defines a Handle() macro that CGAL's own Handle templates would expand.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -122,9 +123,9 @@ void mark_nesting(Cdt& cdt) {
 
 class FaceMesher {
  public:
-  FaceMesher(const TopoDS_Face& face, int face_number, double size, double min_split, std::vector<Point3>& vertices,
+  FaceMesher(const TopoDS_Face& face, int face_number, double size, std::vector<Point3>& vertices,
              const std::string& file)
-      : face_(face), number_(face_number), size_(size), min_split_(min_split), vertices_(vertices), file_(file),
+      : face_(face), number_(face_number), size_(size), vertices_(vertices), file_(file),
         surface_(face, Standard_False), analysis_(new ShapeAnalysis_Surface(BRep_Tool::Surface(face))) {
     BRepTools::UVBounds(face, u0_, u1_, v0_, v1_);
     build_stretch();
@@ -177,13 +178,7 @@ class FaceMesher {
           const Point3& p = vertices_[ids[i]];
           v->info() = {ids[i], gp_Pnt(p[0], p[1], p[2]), uv.X(), uv.Y()};
         }
-        if (previous != Cdt::Vertex_handle() && previous != v) {
-          cdt_.insert_constraint(previous, v);
-          if (!BRep_Tool::Degenerated(edge)) {
-            const int e = chain_of(edge).edge_number;
-            pieces_[{std::min(ids[i - 1], ids[i]), std::max(ids[i - 1], ids[i])}] = {e, i - 1};
-          }
-        }
+        if (previous != Cdt::Vertex_handle() && previous != v) cdt_.insert_constraint(previous, v);
         previous = v;
       }
     }
@@ -209,7 +204,6 @@ class FaceMesher {
         double radius;
         Point2 hint;
         double u, v;
-        std::array<VertexInfo, 3> corners;
         bool shape_only;       // good size, bad shape: insert the plane circumcentre
         Point2 plane_centre;
       };
@@ -228,8 +222,7 @@ class FaceMesher {
         const bool too_big = radius > kRadiusFactor * size_;
         if (!too_big && (min_angle >= kMinAngleDeg || radius < kSmallestRadiusFactor * size_)) continue;
         candidates.push_back({too_big ? radius / size_ + 10 : 1 / std::max(min_angle, 1e-3), centre, radius,
-                              CGAL::centroid(pa, pb, pc), (a.u + b.u + c.u) / 3, (a.v + b.v + c.v) / 3, {a, b, c},
-                              !too_big, CGAL::circumcenter(pa, pb, pc)});
+                              CGAL::centroid(pa, pb, pc), (a.u + b.u + c.u) / 3, (a.v + b.v + c.v) / 3, !too_big, CGAL::circumcenter(pa, pb, pc)});
       }
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& x, const Candidate& y) { return x.priority > y.priority; });
@@ -242,23 +235,8 @@ class FaceMesher {
         // The plane circumcentre for both criteria: a projected 3D centre sits off the plane's circumcircle and
         // leaves plane slivers that shape refinement then chases (torus.brep: 2990 nodes instead of 1446).
         const Outcome outcome = try_insert(c.centre, c.radius, c.hint, c.u, c.v, &c.plane_centre);
-        if (outcome == Outcome::Inserted) {
-          ++inserted, ++stats.num_inserted;
-        } else {
-          ++rejected;
-          // A centre outside the face: the triangle leans on the boundary; split its longest boundary piece.
-          if (outcome == Outcome::Outside) {
-            const VertexInfo* longest[2] = {nullptr, nullptr};
-            double best = 0;
-            for (int k = 0; k < 3; ++k) {
-              const VertexInfo &x = c.corners[k], &y = c.corners[(k + 1) % 3];
-              if (x.id == kNoIndex || y.id == kNoIndex || !pieces_.count({std::min(x.id, y.id), std::max(x.id, y.id)}))
-                continue;
-              if (x.point.Distance(y.point) > best) best = x.point.Distance(y.point), longest[0] = &x, longest[1] = &y;
-            }
-            if (longest[0]) request_split(*longest[0], *longest[1]);
-          }
-        }
+        if (outcome == Outcome::Inserted) ++inserted, ++stats.num_inserted;
+        else ++rejected;
       }
       stats.num_rejected = rejected;
       if (inserted == 0 || stats.capped) break;
@@ -336,10 +314,8 @@ class FaceMesher {
       // In the plane, where the triangulation is Delaunay (a 3D test would split edges for the stretch alone).
       const Point2& a = e.first->vertex(Cdt::cw(e.second))->point();
       const Point2& b = e.first->vertex(Cdt::ccw(e.second))->point();
-      if (CGAL::squared_distance(p, CGAL::midpoint(a, b)) <= 0.25 * CGAL::squared_distance(a, b)) {
-        request_split(e.first->vertex(Cdt::cw(e.second))->info(), e.first->vertex(Cdt::ccw(e.second))->info());
+      if (CGAL::squared_distance(p, CGAL::midpoint(a, b)) <= 0.25 * CGAL::squared_distance(a, b))
         return Outcome::Encroaching;
-      }
     }
     for (const Cdt::Face_handle& f : zone)
       for (int i = 0; i < 3; ++i)
@@ -358,7 +334,6 @@ class FaceMesher {
   const TopoDS_Face face_;
   const int number_;
   const double size_;
-  const double min_split_;
   std::vector<Point3>& vertices_;
   const std::string& file_;
   BRepAdaptor_Surface surface_;
@@ -427,21 +402,6 @@ class FaceMesher {
   std::size_t budget_ = 0;
   Cdt cdt_;
   std::map<Index, std::vector<Cdt::Vertex_handle>> corners_;  // CAD vertex id -> its points in (u, v)
-  std::map<std::pair<Index, Index>, EdgeSplit> pieces_;       // boundary piece (sorted ids) -> its chain position
-  std::vector<EdgeSplit> splits_;
-
- public:
-  // Asks for the boundary piece (a, b) to be split, when it is long enough.
-  void request_split(const VertexInfo& a, const VertexInfo& b) {
-    auto it = pieces_.find({std::min(a.id, b.id), std::max(a.id, b.id)});
-    if (it == pieces_.end() || a.point.Distance(b.point) <= min_split_) return;
-    splits_.push_back(it->second);
-  }
-  std::vector<EdgeSplit> take_splits() {
-    std::sort(splits_.begin(), splits_.end());
-    splits_.erase(std::unique(splits_.begin(), splits_.end()), splits_.end());
-    return std::move(splits_);
-  }
 };
 
 }  // namespace
@@ -470,17 +430,15 @@ std::vector<double> discretise_edge(const TopoDS_Edge& edge, double size) {
   return params;
 }
 
-std::vector<SurfaceTriangle> mesh_curved_face(const TopoDS_Face& face, int face_number, double size, double min_split,
+std::vector<SurfaceTriangle> mesh_curved_face(const TopoDS_Face& face, int face_number, double size,
                                               const std::function<const EdgeChain&(const TopoDS_Edge&)>& chain_of,
                                               const std::function<Index(const TopoDS_Vertex&)>& vertex_id,
                                               std::vector<Point3>& vertices, const std::string& file,
                                               FaceMeshStats& stats) {
-  FaceMesher mesher(face, face_number, size, min_split, vertices, file);
+  FaceMesher mesher(face, face_number, size, vertices, file);
   mesher.add_boundary(chain_of, vertex_id);
   mesher.refine(stats);
-  std::vector<SurfaceTriangle> t = mesher.triangles(stats);
-  stats.splits = mesher.take_splits();
-  return t;
+  return mesher.triangles(stats);
 }
 
 }  // namespace qualmesh::cad

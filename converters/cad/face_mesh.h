@@ -28,17 +28,6 @@ struct EdgeChain {
   std::vector<double> params;
 };
 
-// A piece of an edge chain the face mesher wants split (Chew's rule: a bad triangle's centre encroaches the piece or
-// falls outside the face across it): split `edge_number`'s chain between points `index` and `index + 1`.
-struct EdgeSplit {
-  int edge_number = 0;
-  std::size_t index = 0;
-  bool operator<(const EdgeSplit& o) const {
-    return edge_number != o.edge_number ? edge_number < o.edge_number : index < o.index;
-  }
-  bool operator==(const EdgeSplit& o) const { return edge_number == o.edge_number && index == o.index; }
-};
-
 // Curve parameters of n + 1 points that cut `edge` into n pieces of equal arc length (GCPnts_UniformAbscissa),
 // n = ceil(length / size) (at least 3 on a closed edge, 1 otherwise), ends included, increasing. `size` > 0.
 std::vector<double> discretise_edge(const TopoDS_Edge& edge, double size);
@@ -49,7 +38,6 @@ struct FaceMeshStats {
   bool capped = false;                // the refinement stopped at its insertion budget
   double max_chord_error = 0;         // largest distance from a triangle's centroid to the surface (sampled)
   double min_angle_deg = 180;         // smallest 3D corner angle of the face's triangles
-  std::vector<EdgeSplit> splits;      // boundary pieces to split before meshing again (sorted, unique)
   // remesh_face_on_surface: whether its triangles replaced the refinement's, after how many rounds, and why not (or
   // why it stopped before kRemeshRounds).
   bool remeshed = false;
@@ -62,10 +50,10 @@ using SurfaceTriangle = std::array<Index, 3>;
 // Triangles of one face, counter-clockwise about the surface normal of `face` taken FORWARD. The face's boundary
 // nodes are the chains of its edges (chain_of; degenerate edges need none: their nodes are the vertex's id); new
 // interior nodes are appended to `vertices` (their ids follow). `size`: the face's target edge length. Triangles
-// that collapse on a degenerate edge are left out. Pieces of the boundary longer than `min_split` that a bad
-// triangle needs split are listed in stats.splits (the caller splits them and meshes the faces again). Throws InputError(Parse) naming the face when an edge has no
-// curve on the face. Deterministic.
-std::vector<SurfaceTriangle> mesh_curved_face(const TopoDS_Face& face, int face_number, double size, double min_split,
+// that collapse on a degenerate edge are left out. The boundary is never split: a bad triangle whose centre
+// encroaches it stays (stats.num_rejected). Throws InputError(Parse) naming the face when an edge has no curve on
+// the face. Deterministic.
+std::vector<SurfaceTriangle> mesh_curved_face(const TopoDS_Face& face, int face_number, double size,
                                               const std::function<const EdgeChain&(const TopoDS_Edge&)>& chain_of,
                                               const std::function<Index(const TopoDS_Vertex&)>& vertex_id,
                                               std::vector<Point3>& vertices, const std::string& file,

@@ -24,14 +24,23 @@ def _write_result():
 
 
 def face_checks(femmesh, shape, group_elements):
-    """For every face of the shape: our Face<i> node group against FEM's geometric search getNodesByFace."""
+    """For every face of the shape: our Face<i> node group against FEM's geometric search getNodesByFace. Of the
+    nodes the search misses, how many lie outside the face's own bounding box (which the search starts from, and
+    which OpenCASCADE does not always make around the whole surface: part.step's Face23 bulges 0.007 mm past it),
+    and the largest distance of a missed node from the face."""
+    import Part
     faces = []
     for i, face in enumerate(shape.Faces, 1):
         ours = set(group_elements(femmesh, "Face{}".format(i), "Node") or ())
         found = set(femmesh.getNodesByFace(face))
+        box = face.BoundBox
+        box.enlarge(face.Tolerance)
+        missed = [femmesh.getNodeById(n) for n in sorted(ours - found)]
         faces.append({"name": "Face{}".format(i), "surface": type(face.Surface).__name__,
                       "planar": type(face.Surface).__name__ == "Plane", "ours": len(ours), "found": len(found),
-                      "missing": len(ours - found), "extra": len(found - ours)})
+                      "missing": len(missed), "extra": len(found - ours),
+                      "missing_outside_box": sum(not box.isInside(p) for p in missed),
+                      "missing_max_distance": max([face.distToShape(Part.Vertex(p))[0] for p in missed] or [0.0])})
     return faces
 
 

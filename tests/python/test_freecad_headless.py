@@ -149,12 +149,19 @@ def test_two_solids_get_their_groups(tmp_path_factory, qualmesh_exe):
     assert facts["constraints"][0]["reference"] == "Box001.Face6"
 
 
-# Every node of every Face<i>, mid nodes included, is on its CAD face where FreeCAD's search finds it: the sized CAD
-# surface puts corner nodes there, and a mid node that cannot reach the projection of its edge's midpoint without
-# spoiling an element goes elsewhere along its edge on the surface (qualmesh's `curving:` line), inside the box that
-# getNodesByFace searches (part.step's Face23 bulges 0.003 mm out of that box).
+# Every node of every Face<i>, mid nodes included, is on its CAD face, and FreeCAD's search finds it wherever the
+# face's bounding box, where getNodesByFace starts, holds it: the sized CAD surface puts corner nodes on the face,
+# and a mid node that cannot reach the projection of its edge's midpoint without spoiling an element, or whose target
+# is outside that box, goes elsewhere along its edge on the surface (qualmesh's `curving:` line). part.step's Face23
+# (a surface of extrusion) bulges 0.007 mm past its box in a band along an edge, where no place is findable: one mid
+# node of 12737 lies there at --size 10 (measured 2026-12-04; 0 before the sized surface stopped splitting edges),
+# on the surface to 1e-20 mm. The cylinder misses none.
 @pytest.mark.parametrize("case", ["cylinder", "step"])
 def test_faces_every_node_on_the_surface(case, tmp_path_factory, qualmesh_exe):
     facts = facts_of(case, tmp_path_factory, qualmesh_exe)
-    missing = {f["name"]: f["missing"] for f in facts["faces"] if f["missing"]}
-    assert not missing, missing
+    missing = {f["name"]: (f["missing"], f["missing_outside_box"], f["missing_max_distance"])
+               for f in facts["faces"] if f["missing"]}
+    print(case, "nodes getNodesByFace misses (count, outside the face's box, largest distance):", missing)
+    for name, (count, outside, distance) in missing.items():
+        assert outside == count and distance < 1e-6, (name, count, outside, distance)
+    assert sum(count for count, _, _ in missing.values()) <= (0 if case == "cylinder" else 2), missing
