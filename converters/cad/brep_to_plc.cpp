@@ -202,8 +202,8 @@ class PlcBuilder {
   }
 
   // The faces' triangles remeshed on their surfaces (face_remesh.cpp, isotropic remeshing towards
-  // kRemeshLengthFactor times the face's size; the edge chains stay): nodes [0, boundary_end) are CAD vertices and chain nodes, the rest the faces' interior
-  // nodes, made anew here face by face.
+  // kRemeshLengthFactor times the face's size; the edge chains stay): nodes [0, boundary_end) are CAD vertices and
+  // chain nodes, the rest the faces' interior nodes, made anew here face by face.
   void remesh_faces(const SizeField& field, std::size_t boundary_end,
                     std::vector<std::vector<SurfaceTriangle>>& triangles, std::vector<FaceMeshStats>& stats) {
     std::vector<Point3>& vertices = model_.plc.vertices;
@@ -220,8 +220,8 @@ class PlcBuilder {
     for (int f = 1; f < static_cast<int>(triangles.size()); ++f) {
       if (triangles[f].empty()) continue;
       const TopoDS_Face face = TopoDS::Face(faces_(f).Oriented(TopAbs_FORWARD));
-      triangles[f] = remesh_face_on_surface(face, kRemeshLengthFactor * face_size(f, field), triangles[f], fixed, is_piece, source,
-                                            vertices, stats[f]);
+      triangles[f] = remesh_face_on_surface(face, kRemeshLengthFactor * face_size(f, field), triangles[f], fixed,
+                                            is_piece, source, vertices, stats[f]);
       num_remeshed += stats[f].remeshed;
       num_partial += stats[f].remeshed && stats[f].num_remesh_rounds < kRemeshRounds;
       if (!stats[f].remeshed)

@@ -222,7 +222,8 @@ class FaceMesher {
         const bool too_big = radius > kRadiusFactor * size_;
         if (!too_big && (min_angle >= kMinAngleDeg || radius < kSmallestRadiusFactor * size_)) continue;
         candidates.push_back({too_big ? radius / size_ + 10 : 1 / std::max(min_angle, 1e-3), centre, radius,
-                              CGAL::centroid(pa, pb, pc), (a.u + b.u + c.u) / 3, (a.v + b.v + c.v) / 3, !too_big, CGAL::circumcenter(pa, pb, pc)});
+                              CGAL::centroid(pa, pb, pc), (a.u + b.u + c.u) / 3, (a.v + b.v + c.v) / 3, !too_big,
+                              CGAL::circumcenter(pa, pb, pc)});
       }
       std::stable_sort(candidates.begin(), candidates.end(),
                        [](const Candidate& x, const Candidate& y) { return x.priority > y.priority; });

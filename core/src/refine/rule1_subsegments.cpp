@@ -77,7 +77,7 @@ void Rule1Subsegments::refine_one(MeshState& s) {
   }
   if (s.params.sq_min_split > 0 &&
       s.params.subsegment_below_floor(CGAL::squared_distance(s.kpoint(e.u), s.kpoint(e.v))))
-    s.count_below_floor_split();  // forced by a missing subfacet, or the subsegment is missing
+    s.count_below_floor_split();  // missing, or forced by a subfacet's centre
   double t = 0;
   const Point3 p = refinement_point(s, e.segment, e.u, e.v, &t);
   ConflictZone cz;
