@@ -66,18 +66,18 @@ void Rule1Subsegments::refine_one(MeshState& s) {
   if (subsegment_of(s, e.u, e.v) != e.segment) return;  // stale
   Index enc = kNoIndex;
   if (!e.forced && !encroached(s, e.segment, e.u, e.v, &enc)) return;
-  if (s.params.sq_min_split > 0 && !e.below_floor_too) {  // the floor (MeshOptions::min_split_length)
-    const double sq = CGAL::squared_distance(s.kpoint(e.u), s.kpoint(e.v));
+  // The floor (MeshOptions::min_split_length): a present subsegment below it stays, unless a subfacet's centre
+  // forced it (below_floor_too); a missing one is split all the same, and either split is counted.
+  if (s.params.sq_min_split > 0 &&
+      s.params.subsegment_below_floor(CGAL::squared_distance(s.kpoint(e.u), s.kpoint(e.v)))) {
     Ch3 c;
     int i = 0, j = 0;
-    if (s.params.subsegment_below_floor(sq) && s.tr.is_edge(s.vertices[e.u].handle, s.vertices[e.v].handle, c, i, j)) {
+    if (!e.below_floor_too && s.tr.is_edge(s.vertices[e.u].handle, s.vertices[e.v].handle, c, i, j)) {
       ++s.stats.num_skipped_floor;
       return;
     }
+    s.count_below_floor_split();
   }
-  if (s.params.sq_min_split > 0 &&
-      s.params.subsegment_below_floor(CGAL::squared_distance(s.kpoint(e.u), s.kpoint(e.v))))
-    s.count_below_floor_split();  // missing, or forced by a subfacet's centre
   double t = 0;
   const Point3 p = refinement_point(s, e.segment, e.u, e.v, &t);
   ConflictZone cz;
