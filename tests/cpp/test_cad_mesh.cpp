@@ -156,6 +156,25 @@ INSTANTIATE_TEST_SUITE_P(SharedData, CadMeshesNoPump,
                                            "918_pump_carter_sup_21_03_2006.stp", "U_Joint_2.stp", "model1.igs"),
                          file_test_name);
 
+// cube1000.igs at 2x Gmsh's default size (27.95; the CLI's first mesh of bench_cad_gmsh's second size): Rule 4's
+// cascade of boundary splits on the tessellated plane x + y = -707.1 left two flat cells (four coplanar points,
+// one face a subfacet, the other three against outside cells) inside the domain: a 1.5e-12 deg tetrahedron and six
+// boundary faces with no CAD face. remove_flat_boundary_cells() now leaves such cells out.
+TEST(CadMeshes, Cube1000AtHalfItsDefaultSizeHasNoFlatCellOutsideTheBoundary) {
+  CadOptions cad;
+  cad.size = 27.95;
+  MeshOptions options = cad_defaults();
+  // As `qualmesh mesh` makes them (cmd_mesh.cpp): the split floor, and boundary points onto the CAD surface.
+  options.min_split_length = 0.5 * kDefaultMinSizeFactor * cad.size;
+  const std::string path = test::shared_path("data/cad/cube1000.igs");
+  options.project_to_boundary = [path, cad](int edge, int face, Point3& p) {
+    return project_onto_cad(path, cad, edge, face, p);
+  };
+  MeshStats stats;
+  expect_mesh_matches_cad("cube1000.igs", options, &stats, cad);  // face ids 1..N, positive volumes
+  EXPECT_GT(stats.min_dihedral_deg, 5.0);
+}
+
 // Steiner mode's safety net (mesher.cpp): on bottle.brep's tessellation (--cad-surface tessellation; its sized
 // surface, which it has had since its region seed keeps only the chordal margin, keeps Steiner mode) it leaves
 // subfacets missing after the boundary stage, so it is meshed again with the paper's rule, which conforms.
