@@ -6,8 +6,8 @@ prescribed size), then 2x and 4x finer. At each size both meshers get matched pa
 --curvature N` and `gmsh -3 -clmax H -clcurv N` (N elements per full circle, 12 by default, as QualMesh's default).
 Reported for both, measured by one checker (`qualmesh check --json`, over ALL tetrahedra): nodes, tets, minimum
 dihedral angle, tets below 10 and 15 degrees, whole-process wall time (file to mesh), and the volume error against
-OpenCASCADE's volume of the solids (read from `qualmesh info`). Not a test: timings are noisy, compare within one
-run only.
+OpenCASCADE's volume of the solids (read from `qualmesh info`). A mesh file without tetrahedra counts as a failure
+("N (no tets)", no ratios). Not a test: timings are noisy, compare within one run only.
 
 Usage: bench/bench_cad_gmsh.py [--qualmesh build/converters/qualmesh] [--timeout 600] [--curvature 12] [MODEL ...]
 """
@@ -58,6 +58,8 @@ def fmt(x, spec):
 def row(report, seconds, ok, cad_volume):
     if not ok or report is None:
         return ["failed", "-", "-", "-", "-", fmt(seconds, ".2f"), "-"]
+    if not report.get("num_tets"):  # a mesh file without a tetrahedron (Gmsh on cube1000.igs) is no volume mesh
+        return [fmt(report.get("num_points"), "d") + " (no tets)", "0", "-", "-", "-", fmt(seconds, ".2f"), "-"]
     error = abs(report["mesh_volume"] - cad_volume) / cad_volume if cad_volume else None
     return [fmt(report["num_points"], "d"), fmt(report["num_tets"], "d"), fmt(report["min_dihedral_deg"], ".2f"),
             fmt(report["num_tets_min_dihedral_below_10"], "d"), fmt(report["num_tets_min_dihedral_below_15"], "d"),
@@ -97,9 +99,9 @@ def main():
                                 "-format", "msh41", "-o", str(g_out)], tmp, args.timeout)
                 g_ok = g.returncode == 0 and g_out.exists()
                 g_rep = judge(qualmesh, g_out, tmp) if g_ok else None
-                ratio_n = (fmt(q_rep["num_points"] / g_rep["num_points"], ".2f")
-                           if q_rep and g_rep and g_rep["num_points"] else "-")
-                ratio_t = fmt(t_q / t_g, ".2f") if q_rep and g_rep else "-"
+                both = q_rep and g_rep and q_rep.get("num_tets") and g_rep.get("num_tets")
+                ratio_n = fmt(q_rep["num_points"] / g_rep["num_points"], ".2f") if both else "-"
+                ratio_t = fmt(t_q / t_g, ".2f") if both else "-"
                 cells = [model.name, f"{size:.4g}", surface] + row(q_rep, t_q, q.returncode == 0, cad_volume) + \
                     row(g_rep, t_g, g_ok, cad_volume) + [ratio_n, ratio_t]
                 print("| " + " | ".join(cells) + " |", flush=True)
