@@ -115,6 +115,12 @@ TetMesh extract_mesh(MeshState& s, std::vector<std::uint8_t>& touches_acute) {
     mesh.tets.push_back(t.v);
     mesh.tet_region.push_back(s.regions[t.region].attribute);
   }
+  // Every region boundary is made of subfacets once the flood is consistent (regions.cpp); a face on no input
+  // facet (face_facet -1, marker 0) means a cell's region contradicts its neighbours' (cube1000.igs before
+  // remove_flat_boundary_cells() handled flat cells glued onto a subfacet).
+  const auto num_off_input = std::count_if(faces.begin(), faces.end(), [](const Face& f) { return f.facet < 0; });
+  if (num_off_input > 0)
+    s.log_line("extraction: warning: " + std::to_string(num_off_input) + " boundary face(s) on no input facet");
   for (const Face& f : faces) {
     mesh.faces.push_back(f.v);
     mesh.face_facet.push_back(f.facet);
