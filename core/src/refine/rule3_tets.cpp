@@ -337,10 +337,10 @@ void remove_flat_boundary_cells(MeshState& s) {
     for (int k = 0; k < 4; ++k) v[k] = c->vertex(k)->info();
     if (!degenerate_cell_centre(s, v)) continue;
     // A flat cell glued onto the outer side of a subfacet (cube1000.igs at --size 27.95: four nearly coplanar
-    // points of one boundary plane, one face the subfacet, the other three against outside cells). Rule 4's
-    // cascade of boundary splits leaves it: flood_pending_regions() seeds a pending component from its first
-    // known neighbour, and coplanar points make the cells around such a component ambiguous. Zero volume, so
-    // moving it outside changes no boundary face's facet and no volume; its subfacet becomes the boundary.
+    // points of one boundary plane, one face the subfacet, the other three against outside cells). It appears
+    // during Rule 4's cascade of boundary splits, whose cells get their regions from flood_pending_regions(); no
+    // insertion gives it its region directly (traced with a debug check), the step that does was not pinned down.
+    // Zero volume, so moving it outside changes no volume, and its subfacet becomes the boundary.
     if (outside_by_its_faces(s, c)) {
       c->info().region = kOutsideRegion;
       ++num_cut_off;
@@ -351,7 +351,8 @@ void remove_flat_boundary_cells(MeshState& s) {
   if (num_cut_off > 0)
     s.log_line("extraction: " + std::to_string(num_cut_off) +
                " flat cell(s) outside the boundary (against outside cells across every face but a subfacet) "
-               "left out");  for (const Ch3& c : flat) {
+               "left out");
+  for (const Ch3& c : flat) {
     // Its two faces that are subfacets of one facet, with outside cells across them (the quadrilateral's two
     // triangles); the 2D flip of their common edge makes the cell's other two faces the subfacets.
     int on[4], n_on = 0;
