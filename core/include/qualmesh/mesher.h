@@ -159,7 +159,9 @@ struct MeshStats {
   std::size_t num_tets = 0;                   // tetrahedra in the output
   std::size_t num_boundary_faces = 0;         // faces in the output that lie on input facets
   double max_radius_edge = 0;                 // over the output tetrahedra
-  // Output tetrahedra whose radius-edge ratio exceeds rho0, and why each was left (they add up):
+  // Output tetrahedra whose radius-edge ratio exceeds rho0, and why each was left (they add up, unless the
+  // improvement pass changed tets: num_tets_above_bound is then recounted over the output, and the three reasons
+  // stay those of the tets the engine left):
   //   acute:    it touches an acute input angle (MeshResult::tet_touches_acute_angle), Rule 3 skips it;
   //   rejected: Rule 3 gave up on it: its circumcentre encroaches a subsegment or subfacet whose split was
   //             refused or capped (8 rejected attempts);
