@@ -315,6 +315,8 @@ void Rule3Tets::after_insertion(MeshState& s, const InsertionResult& r) {
 
 // --- After refinement ---------------------------------------------------------------------------------------------
 
+namespace {
+
 // Is the in-domain cell c cut off from its region: outside cells across its faces that are not subfacets, and
 // cells of the domain only across subfacets? Its region then contradicts the flood (regions.cpp), which crosses
 // exactly the faces that are not subfacets.
@@ -328,6 +330,8 @@ bool outside_by_its_faces(const MeshState& s, Ch3 c) {
   return outside_nb;
 }
 
+}  // namespace
+
 void remove_flat_boundary_cells(MeshState& s) {
   std::vector<Ch3> flat;
   std::size_t num_cut_off = 0;
@@ -338,8 +342,8 @@ void remove_flat_boundary_cells(MeshState& s) {
     if (!degenerate_cell_centre(s, v)) continue;
     // A flat cell glued onto the outer side of a subfacet (cube1000.igs at --size 27.95: four nearly coplanar
     // points of one boundary plane, one face the subfacet, the other three against outside cells). It appears
-    // during Rule 4's cascade of boundary splits, whose cells get their regions from flood_pending_regions(); no
-    // insertion gives it its region directly (traced with a debug check), the step that does was not pinned down.
+    // during Rule 4's cascade of boundary splits, whose cells get their regions from flood_pending_regions(); a
+    // debug check showed that no insertion gives it its region directly, and which step does was not found.
     // Zero volume, so moving it outside changes no volume, and its subfacet becomes the boundary.
     if (outside_by_its_faces(s, c)) {
       c->info().region = kOutsideRegion;
