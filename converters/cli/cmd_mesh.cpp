@@ -195,10 +195,11 @@ int run_mesh(MeshArgs& args) {
                 st.num_vertices_pumped, st.num_pump_moves, st.num_pump_rejected, st.max_weight,
                 st.max_weight_cap_ratio);
     if (st.seconds_improve > 0)
-      std::printf("improve:     %zu tets touched (%zu vertex moves, %zu flips, %zu edge splits), min dihedral %.4g -> "
-                  "%.4g deg, %.3f s\n",
+      std::printf("improve:     %zu tets touched (%zu vertex moves, %zu flips, %zu edge splits), %zu caps removed, min "
+                  "dihedral %.4g -> %.4g deg, %.3f s\n",
                   st.num_tets_improved, st.num_improve_vertex_moves, st.num_improve_flips,
-                  st.num_improve_insertions, st.min_dihedral_before_improve_deg, st.min_dihedral_deg,
+                  st.num_improve_insertions, st.num_improve_caps_removed, st.min_dihedral_before_improve_deg,
+                  st.min_dihedral_deg,
                   st.seconds_improve);
   }
   std::printf("time (s):    initial %.3f, boundary %.3f, regions %.3f, refinement %.3f, pumping %.3f, extraction %.3f\n",

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <set>
 
 #include "improve/improve.h"
 #include "qualmesh/mesh_check.h"
@@ -225,6 +226,85 @@ TEST(Improve, TwoThreeFlipRemovesAFlatTet) {
   EXPECT_EQ(mesh.faces, original.faces);
   EXPECT_EQ(r.num_tets_touched, 3u);
   expect_conforming(mesh, plc, "bipyramid");
+}
+
+// Cap removal (cap_removal.cpp): a ridge a-b at height 0.1 over the diagonal c-d of a unit square, on CAD face 1,
+// with the rest of the boundary on CAD face 2. The cap abcd (faces abc and abd on the boundary; 5.7 degrees) lies
+// between the two triangulations of the quadrilateral acbd; below it, two tets meet the apex e. With a CAD projector
+// the pass removes the cap: the boundary keeps its marker and turns to acd and bcd (outward, away from e), the
+// volume drops by the cap's volume, and no point moves. Without a projector (a PLC input, whose boundary must stay
+// on its facets) the cap stays.
+TEST(Improve, CapOnACurvedCadFaceIsRemovedByFlippingItsBoundaryEdge) {
+  Plc plc;
+  plc.vertices = {{-1, 0, 0.1}, {1, 0, 0.1}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}};  // a, b, c, d, e
+  const Index a = 0, b = 1, c = 2, d = 3, e = 4;
+  TetMesh original;
+  original.points = plc.vertices;
+  const auto& p = original.points;
+  for (std::array<Index, 4> t : {std::array<Index, 4>{a, b, c, d}, std::array<Index, 4>{a, c, d, e},
+                                 std::array<Index, 4>{b, c, d, e}}) {
+    if (qualmesh::tet_signed_volume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) < 0) std::swap(t[0], t[1]);
+    original.tets.push_back(t);
+  }
+  // Boundary faces, each oriented away from the tet's fourth vertex.
+  auto outward = [&](Index x, Index y, Index z, Index away) {
+    const Point3 &px = p[x], &py = p[y], &pz = p[z], &pa = p[away];
+    const double u[3] = {py[0] - px[0], py[1] - px[1], py[2] - px[2]}, v[3] = {pz[0] - px[0], pz[1] - px[1], pz[2] - px[2]};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double s = n[0] * (px[0] - pa[0]) + n[1] * (px[1] - pa[1]) + n[2] * (px[2] - pa[2]);
+    return s > 0 ? std::array<Index, 3>{x, y, z} : std::array<Index, 3>{x, z, y};
+  };
+  const std::array<Index, 3> faces[6] = {outward(a, b, c, d), outward(a, b, d, c), outward(a, c, e, d),
+                                         outward(a, d, e, c), outward(b, c, e, d), outward(b, d, e, c)};
+  for (int f = 0; f < 6; ++f) {
+    qualmesh::Facet facet;
+    facet.polygons.push_back({faces[f][0], faces[f][1], faces[f][2]});
+    facet.marker = f < 2 ? 1 : 2;
+    plc.facets.push_back(facet);
+    original.faces.push_back(faces[f]);
+    original.face_facet.push_back(f);
+    original.face_marker.push_back(facet.marker);
+  }
+  auto volume = [](const TetMesh& m) {
+    double sum = 0;
+    for (const auto& t : m.tets)
+      sum += qualmesh::tet_signed_volume(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
+    return sum;
+  };
+  ASSERT_LT(min_dihedral(original), 10.0);
+
+  TetMesh plain = original;
+  const auto r_plain = qualmesh::detail::improve_mesh(plain, plc, {});
+  EXPECT_EQ(r_plain.num_caps_removed, 0u);
+
+  TetMesh mesh = original;
+  qualmesh::detail::ImproveOptions options;
+  options.project_to_boundary = [](int, int, Point3&) { return false; };  // a CAD input (nothing to move here)
+  const auto r = qualmesh::detail::improve_mesh(mesh, plc, options);
+  EXPECT_EQ(r.num_caps_removed, 1u);
+  ASSERT_EQ(mesh.tets.size(), 2u);
+  for (const auto& t : mesh.tets) EXPECT_NE(std::count(t.begin(), t.end(), e), 0) << "the cap is still there";
+  EXPECT_EQ(mesh.points, original.points);
+  EXPECT_NEAR(volume(mesh), volume(original) - 0.2 / 3, 1e-12);  // the cap: base 2 (the square), height 0.1
+  EXPECT_EQ(mesh.face_marker, original.face_marker);
+  ASSERT_EQ(mesh.faces.size(), 6u);
+  std::set<std::array<Index, 3>> marker1;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    auto t = mesh.faces[f];
+    if (mesh.face_marker[f] != 1) {
+      EXPECT_EQ(t, original.faces[f]);
+      continue;
+    }
+    EXPECT_EQ(t, outward(t[0], t[1], t[2], e)) << "face " << f << " not oriented out of the domain";
+    std::sort(t.begin(), t.end());
+    marker1.insert(t);
+  }
+  EXPECT_EQ(marker1, (std::set<std::array<Index, 3>>{{a, c, d}, {b, c, d}}));
+  EXPECT_GT(min_dihedral(mesh), min_dihedral(original));
+  const qualmesh::CheckReport report = qualmesh::check_mesh(mesh, nullptr);  // no reference: the faces left the PLC
+  EXPECT_EQ(report.num_nonpositive_tets, 0u);
+  EXPECT_EQ(report.num_bad_indices + report.num_duplicate_tets + report.num_overshared_faces + report.num_folded_faces,
+            0u);
 }
 
 TEST(Improve, ConstrainedVerticesMoveOnlyAlongTheirLineOrPlane) {
@@ -479,6 +559,7 @@ TEST(Improve, VerticesInsideACurvedFaceMoveOnItsSurface) {
 
   qualmesh::detail::ImproveOptions improve;
   improve.boundary_insertion = false;  // as for CAD meshes (MeshOptions::before_improve)
+  improve.cap_removal = false;         // moves only: the boundary faces stay the same list
   improve.sliver_angle_deg = 35;  // the engine leaves none below 15 degrees here (measured: 48 left with the
                                   // surface vertices fixed, 9 with them on the sphere; minimum 29.5 and 33.0)
   TetMesh fixed = plain.mesh;

@@ -1,7 +1,7 @@
 // The improvement pass (improve.h; issue 16's last pass, after QUALMESH and extraction, beyond the paper):
-// vertex classification, smoothing of sliver vertices within their freedom, and the driver that tries flips
-// (flips.cpp), then smoothing, then an edge split (edge_split.cpp) on each tetrahedron below the sliver angle, worst
-// first.
+// vertex classification, smoothing of sliver vertices within their freedom, and the driver that tries, on each
+// tetrahedron below the sliver angle, worst first: cap removal on a CAD input (cap_removal.cpp), flips (flips.cpp),
+// smoothing, then an edge split (edge_split.cpp).
 // The split is Klingner & Shewchuk's vertex insertion in its simplest form: a tetrahedron with two boundary faces
 // on a nearly flat crease (a cylinder's side) is flat whatever its boundary vertices do; splitting its interior edge
 // and moving the new vertex into the domain replaces it by two tetrahedra with one boundary face each.
@@ -507,6 +507,11 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
         break;
       }
       if (!w.alive[t] || w.quality(t) >= threshold) continue;
+      if (options.cap_removal && options.project_to_boundary && remove_cap(w, mesh, t)) {
+        ++changes;
+        ++res.num_caps_removed;
+        continue;
+      }
       const int kind = options.flips ? flip_to_remove(w, t, options.max_edge_ring) : 0;
       if (kind != 0) {
         ++changes;
@@ -569,7 +574,7 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
     out.push_back(o);
   }
   if (!mesh.weights.empty()) mesh.weights.resize(mesh.points.size(), 0.0);
-  if (res.num_flips > 0 || res.num_insertions > 0) {
+  if (res.num_flips > 0 || res.num_insertions > 0 || res.num_caps_removed > 0) {
     for (Out& o : out) o.v = canonical(o.v);
     std::sort(out.begin(), out.end(), [](const Out& a, const Out& b) { return a.v < b.v; });
   }

@@ -18,9 +18,10 @@
 // or internal-facet face, no segment edge, and join only tetrahedra of one region; a split inside a facet puts its
 // vertex on the facet and splits the two faces holding the edge, each half keeping the facet. So the boundary
 // surface, every input facet (as a union of mesh faces) and each region's volume are those of the input mesh.
-// The one exception is a vertex inside a curved CAD face (OnSurface, with ImproveOptions::project_to_boundary): the
-// mesh there is already fitted to the CAD surface, not the PLC's chords, and the vertex moves on that surface, so
-// the boundary stays a mesh of the same CAD faces with every node on its face.
+// The exceptions are on CAD inputs (ImproveOptions::project_to_boundary), where the mesh is already fitted to the
+// CAD surface, not the PLC's chords: a vertex inside a curved CAD face (OnSurface) moves on that surface, and a cap
+// (a sliver with two boundary faces on one CAD face) is removed by flipping their shared edge (cap_removal.cpp); the
+// boundary stays a mesh of the same CAD faces with every node on its face.
 // Deterministic: ordered iteration, no global random generator; the same mesh in gives the same mesh out.
 #pragma once
 
@@ -86,6 +87,9 @@ struct ImproveOptions {
   // boundary faces holding the edge split with it (improve.cpp split_edge). Off for meshes fitted to a CAD surface
   // (MeshOptions::before_improve), where a point on the chord between two surface nodes would be off the surface.
   bool boundary_insertion = true;
+  // With project_to_boundary: a tet below the threshold with two boundary faces on one curved CAD face (a cap) is
+  // removed, its shared boundary edge flipped to the other diagonal (cap_removal.cpp).
+  bool cap_removal = true;
   // Largest ring of an edge removal (the n-to-2n-4 flip); 3 is the 3-2 flip.
   int max_edge_ring = 7;
   // MeshOptions::project_to_boundary (the mesher passes it; called here with edge 0): moves p onto curved CAD face
@@ -107,6 +111,7 @@ struct ImproveResult {
   std::size_t num_vertices_moved = 0;  // distinct vertices moved
   std::size_t num_insertions = 0;      // edges split (a new vertex each, appended to the points)
   std::size_t num_boundary_insertions = 0;  // of which inside a facet (two boundary faces split each)
+  std::size_t num_caps_removed = 0;    // caps on curved CAD faces removed (their boundary edge flipped)
   std::size_t num_flips = 0;           // 2-3 flips plus edge removals
   std::size_t num_flips23 = 0;
   std::size_t num_edge_removals = 0;   // of which n = 3 are 3-2 flips

@@ -97,13 +97,15 @@ void improve_extracted(detail::MeshState& s, MeshResult& result, const std::vect
   s.stats.num_improve_vertex_moves = r.num_vertex_moves;
   s.stats.num_improve_flips = r.num_flips;
   s.stats.num_improve_insertions = r.num_insertions;
+  s.stats.num_improve_caps_removed = r.num_caps_removed;
   s.stats.min_dihedral_before_improve_deg = r.min_dihedral_before_deg;
   s.stats.seconds_improve = seconds_since(t);
   s.log_line("improve: " + std::to_string(r.num_tets_touched) + " tets touched, " +
              std::to_string(r.num_vertex_moves) + " vertex moves, " + std::to_string(r.num_flips) + " flips (" +
              std::to_string(r.num_flips23) + " 2-3, " + std::to_string(r.num_edge_removals) +
              " edge removals), " + std::to_string(r.num_insertions) + " edge splits (" +
-             std::to_string(r.num_boundary_insertions) + " inside a facet); " + std::to_string(r.num_on_surface) +
+             std::to_string(r.num_boundary_insertions) + " inside a facet), " + std::to_string(r.num_caps_removed) +
+             " caps removed; " + std::to_string(r.num_on_surface) +
              " vertices movable on curved CAD faces; below " +
              std::to_string(options.sliver_angle_deg) + " deg: " +
              std::to_string(r.num_below_before) + " -> " + std::to_string(r.num_below_after));
@@ -226,7 +228,8 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
   st.num_tets = result.mesh.tets.size();
   st.num_boundary_faces = result.mesh.faces.size();
   st.max_radius_edge = 0;
-  if (st.num_tets_improved > 0) {
+  const bool improved = st.num_tets_improved > 0 || st.num_improve_caps_removed > 0;
+  if (improved) {
     // The improvement pass changed tets: the radius-edge audit of extract.cpp is redone over the output (the
     // reasons of MeshStats stay those of the tets the engine left; a changed tet may be above rho0, within
     // kImproveRadiusEdgeFactor * rho0 away from acute input angles).
@@ -240,7 +243,7 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
     const auto& p = result.mesh.points;
     const TetQuality q = tet_quality(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]);
     st.max_radius_edge = std::max(st.max_radius_edge, q.radius_edge);
-    if (st.num_tets_improved > 0) {
+    if (improved) {
       st.num_tets_above_bound += q.radius_edge > s.params.radius_edge_bound;
       if (!result.tet_touches_acute_angle[i])
         st.max_radius_edge_away_from_acute = std::max(st.max_radius_edge_away_from_acute, q.radius_edge);
