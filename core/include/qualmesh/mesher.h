@@ -193,7 +193,7 @@ struct MeshStats {
   std::size_t num_improve_flips = 0;          // 2-3 flips and edge removals (n-to-2n-4, n = 3: 3-2 flips)
   std::size_t num_improve_insertions = 0;     // edges split at a sliver (one vertex added each; in the volume, or
                                               // inside a planar facet, whose two faces are split with it)
-  std::size_t num_improve_caps_removed = 0;   // caps on curved CAD faces removed (two boundary faces on one face:
+  std::size_t num_improve_caps_removed = 0;   // caps on CAD faces removed (two boundary faces on one face:
                                               // their shared edge flipped to the other diagonal)
   double min_dihedral_before_improve_deg = 0; // over all tetrahedra as extracted, before the pass
   // Output tetrahedra not touching an acute input angle (MeshResult::tet_touches_acute_angle): the smallest

@@ -1,10 +1,11 @@
 // Cap removal of the improvement pass (improve.h; beyond the paper, after QUALMESH): a tetrahedron below the sliver
-// angle whose two boundary faces lie on one curved CAD face is a cap, the flat tet between the two ways of
+// angle whose two boundary faces lie on one CAD face is a cap, the flat tet between the two ways of
 // triangulating the quadrilateral of its four boundary vertices. No vertex move widens it (its four vertices stay on
 // the surface), and an edge split only halves it. Removing it flips the boundary edge ab its two faces share to the
 // other diagonal cd: its two other faces become the boundary, every node stays on its CAD face, and the boundary is
 // still a mesh of the same CAD faces (as for ImproveOptions::project_to_boundary's moves, the mesh there is fitted to
-// the CAD surface, not to the PLC's chords). The volume changes by the cap's own.
+// the CAD surface, not to the PLC's chords). The volume changes by the cap's own. On a planar CAD face the cap is flat
+// and the new faces stay in the plane.
 //
 // Only with ImproveOptions::project_to_boundary (a CAD input), and only where nothing else changes:
 //   - both faces are hull faces (no tet across them: no region on the other side), of one CAD face (marker > 0);

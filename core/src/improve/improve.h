@@ -87,7 +87,7 @@ struct ImproveOptions {
   // boundary faces holding the edge split with it (improve.cpp split_edge). Off for meshes fitted to a CAD surface
   // (MeshOptions::before_improve), where a point on the chord between two surface nodes would be off the surface.
   bool boundary_insertion = true;
-  // With project_to_boundary: a tet below the threshold with two boundary faces on one curved CAD face (a cap) is
+  // With project_to_boundary: a tet below the threshold with two boundary faces on one CAD face (a cap) is
   // removed, its shared boundary edge flipped to the other diagonal (cap_removal.cpp).
   bool cap_removal = true;
   // Largest ring of an edge removal (the n-to-2n-4 flip); 3 is the 3-2 flip.
@@ -111,7 +111,7 @@ struct ImproveResult {
   std::size_t num_vertices_moved = 0;  // distinct vertices moved
   std::size_t num_insertions = 0;      // edges split (a new vertex each, appended to the points)
   std::size_t num_boundary_insertions = 0;  // of which inside a facet (two boundary faces split each)
-  std::size_t num_caps_removed = 0;    // caps on curved CAD faces removed (their boundary edge flipped)
+  std::size_t num_caps_removed = 0;    // caps on CAD faces removed (their boundary edge flipped)
   std::size_t num_flips = 0;           // 2-3 flips plus edge removals
   std::size_t num_flips23 = 0;
   std::size_t num_edge_removals = 0;   // of which n = 3 are 3-2 flips

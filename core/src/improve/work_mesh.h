@@ -158,7 +158,7 @@ bool split_edge(WorkMesh& w, TetMesh& mesh, const std::vector<Point3>& facet_nor
                 std::vector<VertexConstraint>& constraints, Index u, Index v, bool boundary,
                 const std::function<void(Index)>& smooth, bool* on_boundary);
 
-// Cap removal (cap_removal.cpp): removes tet `t` when it is a cap on one curved CAD face (two hull faces with one
+// Cap removal (cap_removal.cpp): removes tet `t` when it is a cap on one CAD face (two hull faces with one
 // marker > 0 sharing an edge that no other tet holds), flipping that boundary edge to the other diagonal; the caller
 // allows it only with ImproveOptions::project_to_boundary. Returns whether it removed the tet.
 bool remove_cap(WorkMesh& w, TetMesh& mesh, Index t);
