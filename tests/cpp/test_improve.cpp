@@ -228,10 +228,10 @@ TEST(Improve, TwoThreeFlipRemovesAFlatTet) {
   expect_conforming(mesh, plc, "bipyramid");
 }
 
-// Cap removal (cap_removal.cpp): a ridge a-b at height 0.1 over the diagonal c-d of a unit square, on CAD face 1,
-// with the rest of the boundary on CAD face 2. The cap abcd (faces abc and abd on the boundary; 5.7 degrees) lies
-// between the two triangulations of the quadrilateral acbd; below it, two tets meet the apex e. With a CAD projector
-// the pass removes the cap: the boundary keeps its marker and turns to acd and bcd (outward, away from e), the
+// Cap removal (cap_removal.cpp): a ridge a-b at height 0.1 over the diagonal c-d of the square (+-1, 0), (0, +-1),
+// on CAD face 1, with the rest of the boundary on CAD face 2. The cap abcd (faces abc and abd on the boundary; 8.1
+// degrees) lies between the two triangulations of the quadrilateral acbd; below it, two tets meet the apex e. With a
+// CAD projector the pass removes the cap: the boundary keeps its marker and turns to acd and bcd (outward, away from e), the
 // volume drops by the cap's volume, and no point moves. Without a projector (a PLC input, whose boundary must stay
 // on its facets) the cap stays.
 TEST(Improve, CapOnACurvedCadFaceIsRemovedByFlippingItsBoundaryEdge) {
@@ -249,7 +249,8 @@ TEST(Improve, CapOnACurvedCadFaceIsRemovedByFlippingItsBoundaryEdge) {
   // Boundary faces, each oriented away from the tet's fourth vertex.
   auto outward = [&](Index x, Index y, Index z, Index away) {
     const Point3 &px = p[x], &py = p[y], &pz = p[z], &pa = p[away];
-    const double u[3] = {py[0] - px[0], py[1] - px[1], py[2] - px[2]}, v[3] = {pz[0] - px[0], pz[1] - px[1], pz[2] - px[2]};
+    const double u[3] = {py[0] - px[0], py[1] - px[1], py[2] - px[2]};
+    const double v[3] = {pz[0] - px[0], pz[1] - px[1], pz[2] - px[2]};
     const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
     const double s = n[0] * (px[0] - pa[0]) + n[1] * (px[1] - pa[1]) + n[2] * (px[2] - pa[2]);
     return s > 0 ? std::array<Index, 3>{x, y, z} : std::array<Index, 3>{x, z, y};
@@ -285,7 +286,7 @@ TEST(Improve, CapOnACurvedCadFaceIsRemovedByFlippingItsBoundaryEdge) {
   ASSERT_EQ(mesh.tets.size(), 2u);
   for (const auto& t : mesh.tets) EXPECT_NE(std::count(t.begin(), t.end(), e), 0) << "the cap is still there";
   EXPECT_EQ(mesh.points, original.points);
-  EXPECT_NEAR(volume(mesh), volume(original) - 0.2 / 3, 1e-12);  // the cap: base 2 (the square), height 0.1
+  EXPECT_NEAR(volume(mesh), volume(original) - 0.2 / 3, 1e-12);  // the cap: the square's area 2, height 0.1
   EXPECT_EQ(mesh.face_marker, original.face_marker);
   ASSERT_EQ(mesh.faces.size(), 6u);
   std::set<std::array<Index, 3>> marker1;
