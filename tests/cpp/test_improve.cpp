@@ -231,9 +231,9 @@ TEST(Improve, TwoThreeFlipRemovesAFlatTet) {
 // Cap removal (cap_removal.cpp): a ridge a-b at height 0.1 over the diagonal c-d of the square (+-1, 0), (0, +-1),
 // on CAD face 1, with the rest of the boundary on CAD face 2. The cap abcd (faces abc and abd on the boundary; 8.1
 // degrees) lies between the two triangulations of the quadrilateral acbd; below it, two tets meet the apex e. With a
-// CAD projector the pass removes the cap: the boundary keeps its marker and turns to acd and bcd (outward, away from e), the
-// volume drops by the cap's volume, and no point moves. Without a projector (a PLC input, whose boundary must stay
-// on its facets) the cap stays.
+// CAD projector the pass removes the cap: the boundary keeps its marker and turns to acd and bcd (outward, away from
+// e), the volume drops by the cap's volume, and no point moves. Without a projector (a PLC input, whose boundary must
+// stay on its facets) the cap stays.
 TEST(Improve, CapOnACurvedCadFaceIsRemovedByFlippingItsBoundaryEdge) {
   Plc plc;
   plc.vertices = {{-1, 0, 0.1}, {1, 0, 0.1}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}};  // a, b, c, d, e
