@@ -283,7 +283,6 @@ class PlcBuilder {
   std::function<const EdgeChain&(const TopoDS_Edge&)> chain_for() {
     return [this](const TopoDS_Edge& edge) -> const EdgeChain& {
       const int e = edges_.FindIndex(edge);
-      scratch_chain_.edge_number = e;
       scratch_chain_.ids = edge_chains_[e];
       scratch_chain_.params = edge_params_[e];
       return scratch_chain_;

@@ -23,7 +23,6 @@ namespace qualmesh::cad {
 // The discretisation of one CAD edge: PLC vertex ids and the edge's curve parameters of its points, from the
 // edge's FORWARD first vertex to its last (ids.front() and ids.back() are the CAD vertices' ids).
 struct EdgeChain {
-  int edge_number = 0;  // 1-based CAD edge number
   std::vector<Index> ids;
   std::vector<double> params;
 };

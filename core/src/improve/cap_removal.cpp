@@ -62,17 +62,16 @@ Face3 oriented(const WorkMesh& w, Index x, Index y, Index z, Index towards) {
   return dot(n, sub(w.point(towards), w.point(x))) > 0 ? Face3{x, y, z} : Face3{x, z, y};
 }
 
-void replace_face_of_vertex(WorkMesh& w, Index f, Index from, Index to) {
-  auto& list = w.vertex_faces[from];
+// Boundary face f (an index into TetMesh::faces) becomes `to`: constraint list and vertex-to-face lists follow
+// (`leaving` drops f, `joining` gets it).
+void replace_face(WorkMesh& w, TetMesh& mesh, Index f, const Face3& to, Index leaving, Index joining) {
+  const auto& from = mesh.faces[f];
+  erase_sorted(w.constraint_faces, sorted_face(from[0], from[1], from[2]));
+  insert_sorted(w.constraint_faces, sorted_face(to[0], to[1], to[2]));
+  mesh.faces[f] = to;
+  auto& list = w.vertex_faces[leaving];
   list.erase(std::find(list.begin(), list.end(), f));
-  w.vertex_faces[to].push_back(f);
-}
-
-void replace_constraint(WorkMesh& w, const Face3& from, const Face3& to) {
-  auto& list = w.constraint_faces;
-  const Face3 a = sorted_face(from[0], from[1], from[2]), b = sorted_face(to[0], to[1], to[2]);
-  list.erase(std::lower_bound(list.begin(), list.end(), a));
-  list.insert(std::lower_bound(list.begin(), list.end(), b), b);
+  w.vertex_faces[joining].push_back(f);
 }
 
 }  // namespace
@@ -99,8 +98,9 @@ bool remove_cap(WorkMesh& w, TetMesh& mesh, Index t) {
   const int marker = mesh.face_marker[f_abc];
   if (marker <= 0 || mesh.face_marker[f_abd] != marker) return false;
   if (w.is_protected_edge(a, b)) return false;
-  for (Index x : w.incident[a])
-    if (x != t && std::find(w.tets[x].begin(), w.tets[x].end(), b) != w.tets[x].end()) return false;
+  std::vector<Index> around_ab;
+  w.tets_around_edge(a, b, around_ab);
+  if (around_ab.size() != 1) return false;  // t alone
   for (Index f : w.vertex_faces[c]) {
     const auto& tri = mesh.faces[f];
     if (tri[0] == d || tri[1] == d || tri[2] == d) return false;
@@ -130,12 +130,8 @@ bool remove_cap(WorkMesh& w, TetMesh& mesh, Index t) {
   w.kill_tet(t);
   // abc -> acd (b leaves it, d joins), abd -> bcd (a leaves it, c joins); each keeps its marker, and leaves its PLC
   // facet (a chord triangle of the curved face) for none.
-  replace_constraint(w, mesh.faces[f_abc], acd);
-  replace_constraint(w, mesh.faces[f_abd], bcd);
-  mesh.faces[f_abc] = acd;
-  mesh.faces[f_abd] = bcd;
-  replace_face_of_vertex(w, f_abc, b, d);
-  replace_face_of_vertex(w, f_abd, a, c);
+  replace_face(w, mesh, f_abc, acd, b, d);
+  replace_face(w, mesh, f_abd, bcd, a, c);
   if (mesh.face_facet.size() == mesh.faces.size()) mesh.face_facet[f_abc] = mesh.face_facet[f_abd] = -1;
   return true;
 }

@@ -30,14 +30,6 @@ std::vector<Index> faces_on_edge(const WorkMesh& w, const TetMesh& mesh, Index u
   return out;
 }
 
-void insert_sorted(std::vector<Face3>& list, const Face3& f) {
-  list.insert(std::lower_bound(list.begin(), list.end(), f), f);
-}
-void erase_sorted(std::vector<Face3>& list, const Face3& f) {
-  const auto it = std::lower_bound(list.begin(), list.end(), f);
-  if (it != list.end() && *it == f) list.erase(it);
-}
-void replace_in(std::vector<Index>& list, Index from, Index to) { *std::find(list.begin(), list.end(), from) = to; }
 
 // The faces of `on_edge` (each holding edge uv) split at the new vertex m: face f keeps its index with v replaced by
 // m, and its other half (u replaced by m) is appended with f's facet and marker. Bookkeeping: WorkMesh's constraint
@@ -120,9 +112,7 @@ bool split_edge(WorkMesh& w, TetMesh& mesh, const std::vector<Point3>& facet_nor
     }
   }
   std::vector<Index> around;
-  for (Index t : w.incident[u])
-    for (Index x : w.tets[t])
-      if (x == v) around.push_back(t);
+  w.tets_around_edge(u, v, around);
   if (around.size() < (on_edge.empty() ? 3u : 1u)) return false;
   std::vector<Index> ring;
   double old_min = std::numeric_limits<double>::infinity(), old_max_rho = 0;

@@ -41,20 +41,12 @@ bool keeps_radius_edge(const WorkMesh& w, const FlipPlan& plan) {
   return true;
 }
 
-// The alive tetrahedra holding both u and v.
-void tets_around_edge(const WorkMesh& w, Index u, Index v, std::vector<Index>& out) {
-  out.clear();
-  for (Index t : w.incident[u])
-    for (Index x : w.tets[t])
-      if (x == v) out.push_back(t);
-}
-
 // Edge removal of uv (see the file comment); false when uv is on the boundary (open ring), on a constraint face,
 // protected, between regions, or has a ring of more than max_ring vertices or no valid triangulation.
 bool plan_edge_removal(const WorkMesh& w, Index u, Index v, int max_ring, FlipPlan& plan) {
   if (w.is_protected_edge(u, v)) return false;
   std::vector<Index> around;
-  tets_around_edge(w, u, v, around);
+  w.tets_around_edge(u, v, around);
   const int n = int(around.size());
   if (n < 3 || n > max_ring) return false;
   const int label = w.region[around[0]];

@@ -47,6 +47,18 @@ inline Face3 sorted_face(Index a, Index b, Index c) {
 }
 inline Edge2 sorted_edge(Index a, Index b) { return a < b ? Edge2{a, b} : Edge2{b, a}; }
 
+// Sorted-list bookkeeping of WorkMesh::constraint_faces, and one index swapped for another in a list that holds it.
+inline void insert_sorted(std::vector<Face3>& list, const Face3& f) {
+  list.insert(std::lower_bound(list.begin(), list.end(), f), f);
+}
+inline void erase_sorted(std::vector<Face3>& list, const Face3& f) {
+  const auto it = std::lower_bound(list.begin(), list.end(), f);
+  if (it != list.end() && *it == f) list.erase(it);
+}
+inline void replace_in(std::vector<Index>& list, Index from, Index to) {
+  *std::find(list.begin(), list.end(), from) = to;
+}
+
 // The corners (local 0..3, the first pair found on ties) of the shortest edge of the tetrahedron p[0..3]: the edge
 // by which the output's acute-angle flag of a changed tet is judged (improve.h, shortest_edge_forced).
 inline Edge2 shortest_edge(const Point3* p) {
@@ -112,6 +124,13 @@ struct WorkMesh {
   double radius_edge(Index t) const {
     const Tet4& v = tets[t];
     return tet_radius_edge(point(v[0]), point(v[1]), point(v[2]), point(v[3]));
+  }
+  // The alive tetrahedra holding both u and v (the ring of edge uv), in incident[u]'s order.
+  void tets_around_edge(Index u, Index v, std::vector<Index>& out) const {
+    out.clear();
+    for (Index t : incident[u])
+      for (Index x : tets[t])
+        if (x == v) out.push_back(t);
   }
   // Whether some alive tet holds both u and w.
   bool has_edge(Index u, Index w) const {
