@@ -165,13 +165,22 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
   if (a.kind == ElementKind::Vertex && b.kind == ElementKind::Vertex && a.id == b.id) return false;
   if (b.kind == ElementKind::Vertex) std::swap(a, b);
   if (a.kind == ElementKind::Vertex) {
-    // An input vertex: through the segments and facets incident to it, unless b contains it.
-    if (element_contains_vertex(b, a.id)) return false;
-    for (Index s : vertex_segments[a.id])
-      if (elements_meet_acute({ElementKind::Segment, s}, b)) return true;
-    for (Index f : vertex_facets[a.id])
-      if (elements_meet_acute({ElementKind::Facet, f}, b)) return true;
-    return false;
+    // An input vertex: through the segments and facets incident to it, unless b contains it. Cached by the pair:
+    // two input vertices cost (segments + facets)^2 element pairs, and on a CAD surface, where every node is an
+    // input vertex of a dozen triangles and their edges, pumping and the improvement pass ask for the same pairs of
+    // neighbours again and again (tet_touches_acute_angle).
+    const std::uint64_t key = (std::uint64_t(a.id) << 32) | b.id;
+    auto& cache = vertex_pair_cache[static_cast<int>(b.kind)];
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+    bool acute = false;
+    if (!element_contains_vertex(b, a.id)) {
+      for (Index s : vertex_segments[a.id])
+        if (!acute && elements_meet_acute({ElementKind::Segment, s}, b)) acute = true;
+      for (Index f : vertex_facets[a.id])
+        if (!acute && elements_meet_acute({ElementKind::Facet, f}, b)) acute = true;
+    }
+    cache.emplace(key, acute);
+    return acute;
   }
   if (a.kind == b.kind && a.id == b.id) return false;
   if (b.kind < a.kind || (a.kind == b.kind && b.id < a.id)) std::swap(a, b);

@@ -89,6 +89,8 @@ struct InputComplex {
   // Dihedral angle below 90 degrees between facets f and g along their common segment s, on some pair of sides.
   bool facets_acute_along(Index segment, Index f, Index g) const;
   mutable std::unordered_map<std::uint64_t, bool> acute_pair_cache;
+  // Pairs with an input vertex (elements_meet_acute), by the other element's kind: (vertex id << 32 | other id).
+  mutable std::array<std::unordered_map<std::uint64_t, bool>, 3> vertex_pair_cache;
 
   // Ray queries at a facet's own corners and edges in O(log n) instead of a scan of its n edges (issue 18 item 6:
   // an 8000-gon took 39 s; complex_rays.cpp). For polygons that do not cross, the parity that facet_covers_ray counts
