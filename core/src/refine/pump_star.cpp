@@ -184,16 +184,16 @@ class StarEvaluator {
     return result;
   }
 
-  // The same over a walk's link, a map from sorted ids (kNoIndex last) to entries with a LinkFacet `facet` and a
-  // `cell` pointer (null until measured), in which each facet keeps its measured new cell across events.
-  template <typename LinkMap>
-  StarScore quality_of_walk(LinkMap& link) {
+  // The same over a walk's link, entries with sorted ids `key` (kNoIndex last), a LinkFacet `facet` and a `cell`
+  // pointer (null until measured), in which each facet keeps its measured new cell across events.
+  template <typename Link>
+  StarScore quality_of_walk(Link& link) {
     StarScore result;
     invalid_for_now_ = false;
-    for (auto& kv : link) {
-      if (kv.first[2] == kNoIndex) continue;  // infinite
-      if (!kv.second.cell) kv.second.cell = &new_cell(kv.second.facet, kv.first);
-      add_new_cell(*kv.second.cell, &result);
+    for (auto& entry : link) {
+      if (entry.key[2] == kNoIndex) continue;  // infinite
+      if (!entry.cell) entry.cell = &new_cell(entry.facet, entry.key);
+      add_new_cell(*entry.cell, &result);
     }
     return result;
   }
@@ -426,24 +426,34 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target) {
 
   std::vector<Ch3> cells;
   s.tr.incident_cells(vh, std::back_inserter(cells));
-  std::unordered_set<Ch3, CellHash> in_zone(cells.begin(), cells.end());
-  // The link, keyed by sorted ids (kNoIndex sorts last); per facet, the critical weight of the cell across it (NaN
-  // until computed) and the new cell the evaluator measured over it (null until then).
+  bool target_in_zone = target && std::find(cells.begin(), cells.end(), *target) != cells.end();
+  // The link: per facet, its sorted ids (kNoIndex sorts last), the critical weight of the cell across it (NaN until
+  // computed) and the new cell the evaluator measured over it (null until then). A flat vector: a star's link has a
+  // few dozen facets, and every event scans it twice (next_event, quality_of_walk), which a hash map's nodes made
+  // the walk's largest cost (pump carter: 70k walks, 1.2M events over links of 44 facets on average).
   struct LinkEntry {
+    Key3 key;
     LinkFacet facet;
     double crit = std::numeric_limits<double>::quiet_NaN();
     const NewCell* cell = nullptr;
   };
-  std::unordered_map<Key3, LinkEntry, KeyHash> link;
+  std::vector<LinkEntry> link;
+  link.reserve(2 * cells.size() + 16);
   auto key_of = [](Ch3 c, int i) {
     return sorted3(c->vertex((i + 1) & 3)->info(), c->vertex((i + 2) & 3)->info(), c->vertex((i + 3) & 3)->info());
   };
-  std::unordered_map<Index, int> link_count;  // link facets per vertex: 0 = hidden
+  // Link facets per vertex (0 = hidden), as (id, count) pairs: a star has a few dozen link vertices.
+  std::vector<std::pair<Index, int>> link_count;
+  auto count_of = [&](Index id) -> int& {
+    for (auto& ic : link_count)
+      if (ic.first == id) return ic.second;
+    return link_count.emplace_back(id, 0).second;
+  };
   for (const Ch3& c : cells) {
     const int i = c->index(vh);
     const Key3 k = key_of(c, i);
-    link.emplace(k, LinkEntry{LinkFacet{c, i}});
-    for (Index id : k) ++link_count[id];
+    link.push_back(LinkEntry{k, LinkFacet{c, i}});
+    for (Index id : k) ++count_of(id);
   }
   const int star_region = cells.front()->info().region;
   const bool volume_vertex = s.vertices[v].kind == VertexKind::Volume;
@@ -453,7 +463,7 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target) {
   auto link_vector = [&]() {
     std::vector<LinkFacet> out;
     out.reserve(link.size());
-    for (const auto& kv : link) out.push_back(kv.second.facet);
+    for (const LinkEntry& entry : link) out.push_back(entry.facet);
     return out;
   };
   // The subsegments and subfacets of the zone's cells, read when a star is checked (StarEvaluator::check): most
@@ -481,13 +491,13 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target) {
   std::unordered_map<Ch3, double, CellHash> crit_cache;
   auto next_event = [&](Ch3* cell) {
     double best = std::numeric_limits<double>::infinity();
-    for (auto& kv : link) {
-      const Ch3 n = kv.second.facet.inner->neighbor(kv.second.facet.index);
-      if (std::isnan(kv.second.crit)) {
+    for (LinkEntry& entry : link) {
+      const Ch3 n = entry.facet.inner->neighbor(entry.facet.index);
+      if (std::isnan(entry.crit)) {
         auto it = crit_cache.find(n);
-        kv.second.crit = it != crit_cache.end() ? it->second : (crit_cache[n] = critical_weight(s, p, n));
+        entry.crit = it != crit_cache.end() ? it->second : (crit_cache[n] = critical_weight(s, p, n));
       }
-      const double w = kv.second.crit;
+      const double w = entry.crit;
       if (w < best) best = w, *cell = n;
     }
     return best;
@@ -503,21 +513,27 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target) {
       choice.refusal = Refusal::Region;
       break;
     }
-    in_zone.insert(n);
-    if (target) add_destroyed_cell(s, n, &destroyed);
+    if (target) {
+      target_in_zone = target_in_zone || n == *target;
+      add_destroyed_cell(s, n, &destroyed);
+    }
     cells.push_back(n);
     for (int i = 0; i < 4; ++i) {
       const Key3 k = key_of(n, i);
-      auto it = link.find(k);
+      auto it = std::find_if(link.begin(), link.end(), [&](const LinkEntry& e) { return e.key == k; });
       const int delta = it != link.end() ? -1 : 1;
-      if (it != link.end()) link.erase(it);
-      else link.emplace(k, LinkEntry{LinkFacet{n, i}});
-      for (Index id : k) link_count[id] += delta;
+      if (it != link.end()) {
+        *it = link.back();
+        link.pop_back();
+      } else {
+        link.push_back(LinkEntry{k, LinkFacet{n, i}});
+      }
+      for (Index id : k) count_of(id) += delta;
     }
     bool hidden = false;
     for (int k = 0; k < 4; ++k) {
       const Index id = n->vertex(k)->info();
-      hidden = hidden || (id != kNoIndex && id != v && link_count[id] <= 0);
+      hidden = hidden || (id != kNoIndex && id != v && count_of(id) <= 0);
     }
     if (hidden) {  // the zone only grows: a hidden vertex stays hidden
       choice.end = WalkEnd::Refused;
@@ -534,7 +550,7 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target) {
       // chosen, found invalid for the same reason (the zone only grows), and picks the same weight.
       StarScore sc = evaluator.quality_of_walk(link);
       const bool wanted =
-          target ? in_zone.count(*target) && better(sc, destroyed) && (!found || better(sc, choice.best))
+          target ? target_in_zone && better(sc, destroyed) && (!found || better(sc, choice.best))
                  : better(sc, choice.best);
       if (wanted && keeps_radius_edge(s, sc, current)) {
         evaluator.check(cells, link_vector(), element_ptrs(), true, &sc);
