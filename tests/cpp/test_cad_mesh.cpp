@@ -14,8 +14,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <algorithm>
 #include <map>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "qualmesh/cad_import.h"
 #include "qualmesh/mesh_check.h"
@@ -243,6 +246,67 @@ INSTANTIATE_TEST_SUITE_P(SharedData, ScadMeshesNoPump,
                          ::testing::Values("example001.scad", "CSG.scad", "logo.scad", "example019.scad",
                                            "example024.scad"),
                          file_test_name);
+
+// The CAD projector (project_onto_cad, cad_fit.cpp) starts Newton's method from a projection it made nearby and
+// keeps the answer only where Newton lands on the point itself. Elsewhere Newton may stop at a local extremum
+// (bottle.brep's B-spline fillets: 0.006 and 1.25 from the point, where the surface was 1e-4 away), and OpenCASCADE's
+// global search must answer. So no projection may depend on what was projected before: every node of a curved face,
+// pushed off the surface, projects to the same place from a fresh projector and after the face's nodes were
+// projected, and a projected point projects onto itself.
+TEST(CadMeshesProjection, DoesNotDependOnEarlierProjectionsNearby) {
+  for (const std::string name : {"bottle.brep", "wrenchnut.stp"}) {
+    SCOPED_TRACE(name);
+    const std::string path = test::shared_path("data/cad/" + name);
+    QM_REQUIRE_FILE(path);
+    // project_onto_cad keeps one projector, for the path last asked about: another spelling starts a fresh one.
+    const std::string fresh = path.substr(0, path.rfind('/')) + "/./" + path.substr(path.rfind('/') + 1);
+    const CadOptions options;
+    const Plc plc = read_cad(path, options).plc;
+    std::vector<int> face(plc.vertices.size(), 0);  // the one CAD face of a node's facets, or -1
+    for (const Facet& f : plc.facets)
+      for (const auto& loop : f.polygons)
+        for (Index v : loop) face[v] = face[v] == 0 || face[v] == f.marker ? f.marker : -1;
+    Point3 lo = plc.vertices.front(), hi = lo;
+    for (const Point3& p : plc.vertices)
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+    const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                  (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    auto distance = [](const Point3& a, const Point3& b) {
+      return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    };
+    // Each node pushed 1e-3 of the diagonal off, in a direction that turns from node to node.
+    std::vector<Index> nodes;
+    std::vector<Point3> pushed, reference;
+    for (Index v = 0; v < plc.vertices.size(); ++v) {
+      if (face[v] <= 0) continue;
+      const double a = 2.39996 * v, b = 0.7 * std::sin(1.3 * v);
+      Point3 p = plc.vertices[v];
+      p[0] += 1e-3 * diag * std::cos(a) * std::cos(b);
+      p[1] += 1e-3 * diag * std::sin(a) * std::cos(b);
+      p[2] += 1e-3 * diag * std::sin(b);
+      Point3 q = p;
+      if (!project_onto_cad(fresh, options, 0, face[v], q)) continue;  // a plane
+      nodes.push_back(v);
+      pushed.push_back(p);
+      reference.push_back(q);
+    }
+    ASSERT_GT(nodes.size(), 200u);
+    for (Index v : nodes) {  // the nodes, on their faces already: Newton's method from each other's projections
+      Point3 q = plc.vertices[v];
+      ASSERT_TRUE(project_onto_cad(path, options, 0, face[v], q));
+      EXPECT_LE(distance(q, plc.vertices[v]), 1e-6 * diag);
+    }
+    std::size_t num_differ = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      Point3 q = pushed[i], again = reference[i];
+      ASSERT_TRUE(project_onto_cad(path, options, 0, face[nodes[i]], q));
+      ASSERT_TRUE(project_onto_cad(path, options, 0, face[nodes[i]], again));
+      num_differ += distance(q, reference[i]) > 1e-9 * diag;
+      EXPECT_LE(distance(again, reference[i]), 1e-9 * diag);
+    }
+    EXPECT_EQ(num_differ, 0u) << "of " << nodes.size() << " pushed nodes";
+  }
+}
 
 TEST(CadMeshes, StackedBeamsMeetOnAnInternalFacet) {
   const std::string path = test::shared_path("data/cad/fcFEM_Stacked_Beam_Example.FCStd");
