@@ -27,7 +27,6 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <gp_Pnt2d.hxx>
-#include <gp_Vec.hxx>
 
 #include <algorithm>
 #include <array>
@@ -146,10 +145,10 @@ class Projector {
       return (std::uint64_t(c[0]) * 73856093u) ^ (std::uint64_t(c[1]) * 19349663u) ^ (std::uint64_t(c[2]) * 83492791u);
     }
 
-    // Newton's method from `hint` (NextValueOfUV): true when it lands within `precision` of p. Only then is its
-    // answer sure to be the nearest point of the surface to that precision (every other is at least as far as the
-    // surface from p, which is less than precision). Elsewhere Newton finds a local extremum: on bottle.brep's
-    // B-spline fillets it stopped 0.006 and 1.25 from p where ValueOfUV found the surface 1e-4 away.
+    // Newton's method from `hint` (NextValueOfUV): true when it lands within `precision` of p, so that p is on the
+    // surface to that precision and the answer is its nearest point whatever else the surface does. Elsewhere Newton
+    // may stop at a local extremum, which no local test tells apart: on bottle.brep's B-spline faces it stopped 0.006
+    // and 1.25 from p, along the surface normal, where ValueOfUV found the surface 1e-4 away.
     bool local_projection(const gp_Pnt2d& hint, double hint_distance, const gp_Pnt& p, gp_Pnt2d& uv) {
       uv = analysis->NextValueOfUV(hint, p, precision, hint_distance + precision);
       return analysis->Value(uv).Distance(p) <= precision;

@@ -428,9 +428,9 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target) {
   s.tr.incident_cells(vh, std::back_inserter(cells));
   bool target_in_zone = target && std::find(cells.begin(), cells.end(), *target) != cells.end();
   // The link: per facet, its sorted ids (kNoIndex sorts last), the critical weight of the cell across it (NaN until
-  // computed) and the new cell the evaluator measured over it (null until then). A flat vector: a star's link has a
-  // few dozen facets, and every event scans it twice (next_event, quality_of_walk), which a hash map's nodes made
-  // the walk's largest cost (pump carter: 70k walks, 1.2M events over links of 44 facets on average).
+  // computed) and the new cell the evaluator measured over it (null until then). A flat vector, scanned in place: a
+  // link has a few dozen facets (44 on average over pump carter's 70k walks, 1.2M events), and every event scans it
+  // twice (next_event, quality_of_walk).
   struct LinkEntry {
     Key3 key;
     LinkFacet facet;
