@@ -76,8 +76,23 @@ std::vector<Segment> extra_segments(const Plc& plc) {
 }
 
 // The vertices of `mesh` whose coordinates are those of a PLC vertex.
-std::vector<std::uint8_t> input_vertex_flags(const TetMesh& mesh, const Plc& plc) {
-  std::vector<Point3> input = plc.vertices;
+// Which mesh points are vertices of the PLC (they stay Fixed). With `cad`, a vertex that appears only alone in facet
+// loops is left out: a node the CAD front end put inside a planar face (brep_to_plc.cpp writes a planar face as its
+// polygon with its interior nodes), a surface mesh node and no CAD feature, which may move within its plane like a
+// Steiner point of the facet (pump carter at 22.06: tets below 10 deg 366 -> 271). In a PLC from a user such a
+// vertex is one the user placed (a load point): it stays.
+std::vector<std::uint8_t> input_vertex_flags(const TetMesh& mesh, const Plc& plc, bool cad) {
+  std::vector<std::uint8_t> feature(plc.vertices.size(), cad ? 0 : 1);
+  if (cad) {
+    for (const Segment& s : plc.segments) feature[s.a] = feature[s.b] = 1;
+    for (const Facet& f : plc.facets)
+      for (const auto& loop : f.polygons)
+        if (loop.size() >= 2)
+          for (Index v : loop) feature[v] = 1;
+  }
+  std::vector<Point3> input;
+  for (Index v = 0; v < plc.vertices.size(); ++v)
+    if (feature[v]) input.push_back(plc.vertices[v]);
   std::sort(input.begin(), input.end());
   std::vector<std::uint8_t> flags(mesh.points.size(), 0);
   for (std::size_t v = 0; v < mesh.points.size(); ++v)
@@ -110,7 +125,7 @@ double oriented_min_dihedral_deg(const Point3& p0, const Point3& p1, const Point
 std::vector<VertexConstraint> classify_vertices(const TetMesh& mesh, const Plc& plc, bool curved) {
   const std::size_t nv = mesh.points.size();
   std::vector<VertexConstraint> out(nv);
-  const std::vector<std::uint8_t> is_input = input_vertex_flags(mesh, plc);
+  const std::vector<std::uint8_t> is_input = input_vertex_flags(mesh, plc, curved);
   const std::vector<std::vector<Index>> vfaces = faces_per_vertex(mesh);
   std::vector<Vec> normals;
   normals.reserve(plc.facets.size());
