@@ -75,12 +75,11 @@ std::vector<Segment> extra_segments(const Plc& plc) {
   return extra;
 }
 
-// The vertices of `mesh` whose coordinates are those of a PLC vertex.
-// Which mesh points are vertices of the PLC (they stay Fixed). With `cad`, a vertex that appears only alone in facet
-// loops is left out: a node the CAD front end put inside a planar face (brep_to_plc.cpp writes a planar face as its
-// polygon with its interior nodes), a surface mesh node and no CAD feature, which may move within its plane like a
-// Steiner point of the facet (pump carter at 22.06: tets below 10 deg 366 -> 271). In a PLC from a user such a
-// vertex is one the user placed (a load point): it stays.
+// The vertices of `mesh` whose coordinates are those of a PLC vertex (they stay Fixed). With `cad`, a PLC vertex
+// that appears only alone in facet loops is left out: a node the CAD front end put inside a planar face
+// (brep_to_plc.cpp writes a planar face as its polygon with its interior nodes), a surface mesh node and no CAD
+// feature, which may move within its plane like a Steiner point of the facet (pump carter at 22.06: tets below
+// 10 deg 366 -> 271). In a PLC from a user such a vertex is one the user placed (a load point): it stays.
 std::vector<std::uint8_t> input_vertex_flags(const TetMesh& mesh, const Plc& plc, bool cad) {
   std::vector<std::uint8_t> feature(plc.vertices.size(), cad ? 0 : 1);
   if (cad) {
