@@ -249,7 +249,7 @@ INSTANTIATE_TEST_SUITE_P(SharedData, ScadMeshesNoPump,
 
 // The CAD projector (project_onto_cad, cad_fit.cpp) starts Newton's method from a projection it made nearby and
 // keeps the answer only where Newton lands on the point itself. Elsewhere Newton may stop at a local extremum
-// (bottle.brep's B-spline fillets: 0.006 and 1.25 from the point, where the surface was 1e-4 away), and OpenCASCADE's
+// (bottle.brep's B-spline faces: 0.006 and 1.25 from the point, where the surface was 1e-4 away), and OpenCASCADE's
 // global search must answer. So no projection may depend on what was projected before: every node of a curved face,
 // pushed off the surface, projects to the same place from a fresh projector and after the face's nodes were
 // projected, and a projected point projects onto itself.
