@@ -5,7 +5,7 @@
 // them and the mesh volume converges to the CAD volume.
 //
 // Projection: ShapeAnalysis_Surface::ValueOfUV (robust on periodic and singular surfaces) for faces, after a Newton
-// step from an earlier projection nearby for a point already on the surface (Projector::FaceData::uv_of),
+// step from an earlier projection nearby for a point already on the surface (Projector::FaceData::project),
 // ShapeAnalysis_Curve::Project within the edge's parameter range for edges. A node within the chordal deflection of
 // its face moves at most about that far, but a move is always checked against the elements around the node
 // (move_nodes_checked, second_order.h): relaxed part of the way, or not made, rather than inverting an element.
@@ -98,8 +98,7 @@ class Projector {
     FaceData* data = face(f);
     if (!data) return false;
     const gp_Pnt local = gp_Pnt(p[0], p[1], p[2]).Transformed(data->to_local);
-    const gp_Pnt2d uv = data->uv_of(local);
-    const gp_Pnt q = data->analysis->Value(uv).Transformed(data->to_global);
+    const gp_Pnt q = data->project(local).Transformed(data->to_global);
     target = {q.X(), q.Y(), q.Z()};
     return true;
   }
@@ -148,14 +147,17 @@ class Projector {
     // Newton's method from `hint` (NextValueOfUV): true when it lands within `precision` of p, so that p is on the
     // surface to that precision and the answer is its nearest point whatever else the surface does. Elsewhere Newton
     // may stop at a local extremum, which no local test tells apart: on bottle.brep's B-spline faces it stopped 0.006
-    // and 1.25 from p, along the surface normal, where ValueOfUV found the surface 1e-4 away.
-    bool local_projection(const gp_Pnt2d& hint, double hint_distance, const gp_Pnt& p, gp_Pnt2d& uv) {
-      uv = analysis->NextValueOfUV(hint, p, precision, hint_distance + precision);
-      return analysis->Value(uv).Distance(p) <= precision;
+    // and 1.25 from p, along the surface normal, where ValueOfUV found the surface 1e-4 away. `sample` gets the
+    // answer, its point evaluated once.
+    bool local_projection(const gp_Pnt2d& hint, double hint_distance, const gp_Pnt& p, UvSample& sample) {
+      sample.uv = analysis->NextValueOfUV(hint, p, precision, hint_distance + precision);
+      sample.point = analysis->Value(sample.uv);
+      return sample.point.Distance(p) <= precision;
     }
 
-    gp_Pnt2d uv_of(const gp_Pnt& p) {
-      if (cell <= 0) return analysis->ValueOfUV(p, precision);
+    // The point of the surface nearest to p (both in the surface's frame).
+    gp_Pnt project(const gp_Pnt& p) {
+      if (cell <= 0) return analysis->Value(analysis->ValueOfUV(p, precision));
       const std::array<std::int64_t, 3> c = cell_of(p);
       const UvSample* nearest = nullptr;
       double best = std::numeric_limits<double>::infinity();
@@ -169,11 +171,14 @@ class Projector {
               if (d < best) best = d, nearest = &sample;
             }
           }
-      gp_Pnt2d uv;
-      if (!nearest || !local_projection(nearest->uv, std::sqrt(best), p, uv)) uv = analysis->ValueOfUV(p, precision);
+      UvSample found;
+      if (!nearest || !local_projection(nearest->uv, std::sqrt(best), p, found)) {
+        found.uv = analysis->ValueOfUV(p, precision);
+        found.point = analysis->Value(found.uv);
+      }
       std::vector<UvSample>& bucket = samples[key_of(c)];
-      if (bucket.size() < kSamplesPerCell) bucket.push_back({analysis->Value(uv), uv});
-      return uv;
+      if (bucket.size() < kSamplesPerCell) bucket.push_back(found);
+      return found.point;
     }
   };
   static constexpr std::size_t kSamplesPerCell = 8;

@@ -266,11 +266,9 @@ TEST(CadMeshesProjection, DoesNotDependOnEarlierProjectionsNearby) {
     for (const Facet& f : plc.facets)
       for (const auto& loop : f.polygons)
         for (Index v : loop) face[v] = face[v] == 0 || face[v] == f.marker ? f.marker : -1;
-    Point3 lo = plc.vertices.front(), hi = lo;
-    for (const Point3& p : plc.vertices)
-      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-    const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                  (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    BoundingBox box;
+    for (const Point3& p : plc.vertices) box.add(p);
+    const double diag = box.diagonal();
     auto distance = [](const Point3& a, const Point3& b) {
       return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
     };

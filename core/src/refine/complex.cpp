@@ -172,13 +172,14 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
     const std::uint64_t key = (std::uint64_t(a.id) << 32) | b.id;
     auto& cache = vertex_pair_cache[static_cast<int>(b.kind)];
     if (auto it = cache.find(key); it != cache.end()) return it->second;
-    bool acute = false;
-    if (!element_contains_vertex(b, a.id)) {
+    const bool acute = [&] {
+      if (element_contains_vertex(b, a.id)) return false;
       for (Index s : vertex_segments[a.id])
-        if (!acute && elements_meet_acute({ElementKind::Segment, s}, b)) acute = true;
+        if (elements_meet_acute({ElementKind::Segment, s}, b)) return true;
       for (Index f : vertex_facets[a.id])
-        if (!acute && elements_meet_acute({ElementKind::Facet, f}, b)) acute = true;
-    }
+        if (elements_meet_acute({ElementKind::Facet, f}, b)) return true;
+      return false;
+    }();
     cache.emplace(key, acute);
     return acute;
   }
