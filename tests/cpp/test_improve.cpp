@@ -565,9 +565,10 @@ bool onto_sphere(int edge, int face, Point3& p) {
 
 // ImproveOptions::project_to_boundary: the vertices inside a curved face (one face marker around them, on no marked
 // edge) are OnSurface and move on the surface the projector gives: each stays on it (here the sphere, to rounding),
-// input vertices stay put, every tet stays positively oriented, the boundary faces are the same list, the minimum
-// never drops, and smoothing on the surface leaves fewer tets below the threshold than the same pass with those
-// vertices fixed.
+// every tet stays positively oriented, the boundary faces are the same list, the minimum never drops, and smoothing
+// on the surface leaves fewer tets below the threshold than the same pass with those vertices fixed. The PLC's own
+// vertices are such nodes here (triangle facets sharing marker 1, on no segment, as the CAD front end writes a curved
+// face): they are OnSurface in a CAD run and move too; in a user's PLC they are Fixed.
 TEST(Improve, VerticesInsideACurvedFaceMoveOnItsSurface) {
   const Plc plc = icosphere();
   qualmesh::MeshOptions options;
@@ -594,16 +595,22 @@ TEST(Improve, VerticesInsideACurvedFaceMoveOnItsSurface) {
   const auto r = qualmesh::detail::improve_mesh(mesh, plc, improve);
   ASSERT_GT(r.num_on_surface, 0u);
   ASSERT_GT(r.num_below_before, 0u) << "nothing to improve: the test proves nothing";
-  std::size_t moved_on_surface = 0;
+  const auto user_classes = qualmesh::detail::classify_vertices(plain.mesh, plc, false);
+  std::size_t moved_on_surface = 0, input_moved = 0;
   for (Index v = 0; v < plain.mesh.points.size(); ++v) {
     const Point3 &p = mesh.points[v], &o = plain.mesh.points[v];
     if (classes[v].freedom == VertexFreedom::OnSurface) {
       EXPECT_NEAR(radius(p), 10, 1e-12) << "vertex " << v;
       moved_on_surface += p != o;
     }
-    if (std::find(plc.vertices.begin(), plc.vertices.end(), o) != plc.vertices.end()) EXPECT_EQ(p, o) << v;
+    if (std::find(plc.vertices.begin(), plc.vertices.end(), o) != plc.vertices.end()) {
+      EXPECT_EQ(classes[v].freedom, VertexFreedom::OnSurface) << v;
+      EXPECT_EQ(user_classes[v].freedom, VertexFreedom::Fixed) << v;
+      input_moved += p != o;
+    }
   }
   EXPECT_GT(moved_on_surface, 0u);
+  EXPECT_GT(input_moved, 0u);
   EXPECT_EQ(mesh.faces, plain.mesh.faces);
   for (const auto& t : mesh.tets)
     EXPECT_GT(qualmesh::tet_signed_volume(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]),

@@ -75,19 +75,31 @@ std::vector<Segment> extra_segments(const Plc& plc) {
   return extra;
 }
 
-// The vertices of `mesh` whose coordinates are those of a PLC vertex (they stay Fixed). With `cad`, a PLC vertex
-// that appears only alone in facet loops is left out: a node the CAD front end put inside a planar face
-// (brep_to_plc.cpp writes a planar face as its polygon with its interior nodes), a surface mesh node and no CAD
-// feature, which may move within its plane like a Steiner point of the facet (pump carter at 22.06: tets below
-// 10 deg 366 -> 271). In a PLC from a user such a vertex is one the user placed (a load point): it stays.
+// The vertices of `mesh` whose coordinates are those of a PLC vertex (they stay Fixed). With `cad`, two kinds of
+// PLC vertex are surface mesh nodes of the CAD front end and no CAD feature, and are left out:
+// - one that appears only alone in facet loops: a node inside a planar face (brep_to_plc.cpp writes a planar face as
+//   its polygon with its interior nodes), which may move within its plane like a Steiner point of the facet (pump
+//   carter at 22.06: tets below 10 deg 366 -> 271);
+// - one on no segment whose loops all belong to facets sharing their marker with another facet: a node inside a
+//   curved face, which brep_to_plc.cpp writes as triangle facets all marked with the face's number. It moves on the
+//   CAD surface like a Steiner point there (OnSurface).
+// In a PLC from a user such a vertex is one the user placed (a load point): it stays.
 std::vector<std::uint8_t> input_vertex_flags(const TetMesh& mesh, const Plc& plc, bool cad) {
   std::vector<std::uint8_t> feature(plc.vertices.size(), cad ? 0 : 1);
   if (cad) {
+    std::vector<int> markers;
+    for (const Facet& f : plc.facets) markers.push_back(f.marker);
+    std::sort(markers.begin(), markers.end());
+    const auto shared = [&](int marker) {
+      const auto range = std::equal_range(markers.begin(), markers.end(), marker);
+      return marker > 0 && range.second - range.first >= 2;
+    };
     for (const Segment& s : plc.segments) feature[s.a] = feature[s.b] = 1;
     for (const Facet& f : plc.facets)
-      for (const auto& loop : f.polygons)
-        if (loop.size() >= 2)
-          for (Index v : loop) feature[v] = 1;
+      if (!shared(f.marker))
+        for (const auto& loop : f.polygons)
+          if (loop.size() >= 2)
+            for (Index v : loop) feature[v] = 1;
   }
   std::vector<Point3> input;
   for (Index v = 0; v < plc.vertices.size(); ++v)

@@ -12,8 +12,8 @@
 // fail, an interior edge of the sliver is split and the new free vertex smoothed, their vertex insertion; an edge
 // inside a planar facet is split too, its new vertex on the facet: issue 16's sliver-removing points on the boundary).
 //
-// Conformity is exact by construction: an input vertex never moves (but a CAD front end's node alone inside a planar
-// face, no CAD feature, moves as a vertex inside that facet does); a vertex on an input segment moves only along
+// Conformity is exact by construction: an input vertex never moves (but a CAD front end's surface mesh node inside a
+// planar or curved face, no CAD feature, moves as a Steiner vertex there does); a vertex on an input segment moves only along
 // that segment's line, a vertex inside an input facet only within the facet's plane, with every tetrahedron of its
 // star positively oriented and every boundary triangle of its star keeping its orientation; flips touch no boundary
 // or internal-facet face, no segment edge, and join only tetrahedra of one region; a split inside a facet puts its
@@ -55,8 +55,10 @@ struct VertexConstraint {
 
 // The freedom of every vertex of `mesh` (points, tets, faces with face_facet, edges), judged from the mesh's faces
 // and the input `plc` (its vertices are the fixed points; its facets give the planes, its segments the lines):
-//   input vertex (coordinates equal to a PLC vertex; with `curved`, a CAD run, not one that appears only alone in
-//     facet loops: a node the CAD front end put inside a planar face, judged as below)   -> Fixed;
+//   input vertex (coordinates equal to a PLC vertex; with `curved`, a CAD run, not a surface mesh node of the CAD
+//     front end: one that appears only alone in facet loops (inside a planar face), or one on no segment whose
+//     loops all belong to facets that share their marker > 0 (inside a curved face); those are judged as below)
+//                                                                      -> Fixed;
 //   on a crease (an edge of boundary faces that is shared by faces of two input facets, or by one or three faces),
 //     on a marked TetMesh edge, or on an explicit PLC segment off the facet polygons, with exactly two such
 //     collinear edges                                                  -> OnSegment;
