@@ -15,7 +15,8 @@
 // below the threshold than before, every tetrahedron of the star stays positively oriented (by a margin) and every
 // boundary triangle of the star keeps its orientation and its plane. A vertex inside a curved CAD face (OnSurface)
 // moves in its tangent plane, each position projected onto the CAD surface (MeshOptions::project_to_boundary) before
-// it is judged; its boundary triangles keep their orientation and turn by at most 30 degrees.
+// it is judged; its boundary triangles keep their orientation and turn by at most 30 degrees. A vertex inside a
+// curved CAD edge (OnCurve) moves the same way along the chord of its two neighbours on the edge, projected onto it.
 #include "improve/improve.h"
 
 #include <algorithm>
@@ -83,6 +84,10 @@ std::vector<Segment> extra_segments(const Plc& plc) {
 // - one on no segment whose loops all belong to facets sharing their marker with another facet: a node inside a
 //   curved face, which brep_to_plc.cpp writes as triangle facets all marked with the face's number. It moves on the
 //   CAD surface like a Steiner point there (OnSurface).
+// - one on exactly two segments that carry one marker > 0: a node inside a CAD edge (brep_to_plc.cpp writes an edge
+//   as the chain of its nodes), which moves along the edge (OnSegment on a straight one, OnCurve on a curved one).
+//   The ends of each chain are the edge's CAD vertices: there segments of two edges meet (a closed edge's vertex
+//   too, where the face's seam meets it; a closed edge without a seam is the exception, its vertex may slide).
 // In a PLC from a user such a vertex is one the user placed (a load point): it stays.
 std::vector<std::uint8_t> input_vertex_flags(const TetMesh& mesh, const Plc& plc, bool cad) {
   std::vector<std::uint8_t> feature(plc.vertices.size(), cad ? 0 : 1);
@@ -94,12 +99,20 @@ std::vector<std::uint8_t> input_vertex_flags(const TetMesh& mesh, const Plc& plc
       const auto range = std::equal_range(markers.begin(), markers.end(), marker);
       return marker > 0 && range.second - range.first >= 2;
     };
-    for (const Segment& s : plc.segments) feature[s.a] = feature[s.b] = 1;
+    std::vector<int> segment_count(plc.vertices.size(), 0), edge(plc.vertices.size(), 0);
+    std::vector<std::uint8_t> edge_node(plc.vertices.size(), 1);
+    for (const Segment& s : plc.segments)
+      for (Index v : {s.a, s.b}) {
+        if (segment_count[v]++ == 0) edge[v] = s.marker;
+        edge_node[v] = edge_node[v] && s.marker > 0 && s.marker == edge[v];
+      }
+    for (Index v = 0; v < plc.vertices.size(); ++v)
+      if (segment_count[v] > 0 && !(edge_node[v] && segment_count[v] == 2)) feature[v] = 1;
     for (const Facet& f : plc.facets)
       if (!shared(f.marker))
         for (const auto& loop : f.polygons)
           if (loop.size() >= 2)
-            for (Index v : loop) feature[v] = 1;
+            for (Index v : loop) feature[v] = feature[v] || segment_count[v] == 0;
   }
   std::vector<Point3> input;
   for (Index v = 0; v < plc.vertices.size(); ++v)
@@ -217,7 +230,25 @@ std::vector<VertexConstraint> classify_vertices(const TetMesh& mesh, const Plc& 
         c = {VertexFreedom::OnSegment, unit(sub(mesh.points[creases[1]], mesh.points[creases[0]]))};
     }
   }
-  if (!curved || mesh.face_marker.size() != mesh.faces.size()) return out;
+  if (!curved) return out;
+  if (mesh.edge_marker.size() == mesh.edges.size()) {
+    // Inside one curved CAD edge: two marked edges with one marker. (Where the edge is straight, the crease test
+    // above made it OnSegment already.)
+    std::vector<std::array<int, 2>> edge_markers(nv, {0, 0});
+    std::vector<int> count(nv, 0);
+    for (std::size_t e = 0; e < mesh.edges.size(); ++e)
+      for (Index x : mesh.edges[e]) {
+        if (count[x] < 2) edge_markers[x][count[x]] = mesh.edge_marker[e];
+        ++count[x];
+      }
+    for (Index v = 0; v < nv; ++v) {
+      if (out[v].freedom != VertexFreedom::Fixed || is_input[v] || count[v] != 2 || marked[v].size() != 2) continue;
+      const int edge = edge_markers[v][0];
+      const Vec d = unit(sub(mesh.points[marked[v][1]], mesh.points[marked[v][0]]));
+      if (edge > 0 && edge_markers[v][1] == edge && norm(d) > 0) out[v] = {VertexFreedom::OnCurve, d, 0, edge};
+    }
+  }
+  if (mesh.face_marker.size() != mesh.faces.size()) return out;
   for (Index v = 0; v < nv; ++v) {
     const auto& faces = vfaces[v];
     if (out[v].freedom != VertexFreedom::Fixed || is_input[v] || faces.empty() || !marked[v].empty()) continue;
@@ -311,11 +342,14 @@ class Smoother {
   }
 
  private:
-  bool on_cad() const { return c_.freedom == VertexFreedom::OnSurface; }
+  bool on_cad() const { return c_.freedom == VertexFreedom::OnSurface || c_.freedom == VertexFreedom::OnCurve; }
 
-  // A point of the vertex's line, plane or tangent plane made a position it may take: on its CAD surface for
-  // OnSurface (false when the projection fails), as it is otherwise.
-  bool place(Point3& cand) const { return !on_cad() || project_to_boundary_(0, c_.cad_face, cand); }
+  // A point of the vertex's line, plane, tangent plane or tangent made a position it may take: on its CAD surface
+  // for OnSurface, on its CAD curve for OnCurve (false when the projection fails), as it is otherwise.
+  bool place(Point3& cand) const {
+    if (c_.freedom == VertexFreedom::OnCurve) return project_to_boundary_(c_.cad_edge, 0, cand);
+    return !on_cad() || project_to_boundary_(0, c_.cad_face, cand);
+  }
 
   // The star's smallest angle at candidate `cand` (star_min), with `cand` first made a position the vertex may take
   // (place); -1 when it cannot be. OpenCASCADE's projection costs far more than the star: a candidate of a CAD vertex
@@ -331,7 +365,8 @@ class Smoother {
       case VertexFreedom::Interior: return g;
       case VertexFreedom::InFacet:
       case VertexFreedom::OnSurface: return sub(g, scale(c_.direction, dot(g, c_.direction)));
-      case VertexFreedom::OnSegment: return scale(c_.direction, dot(g, c_.direction));
+      case VertexFreedom::OnSegment:
+      case VertexFreedom::OnCurve: return scale(c_.direction, dot(g, c_.direction));
       case VertexFreedom::Fixed: break;
     }
     return {0, 0, 0};
@@ -476,6 +511,7 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
     res.num_on_segment += c.freedom == VertexFreedom::OnSegment;
     res.num_in_facet += c.freedom == VertexFreedom::InFacet;
     res.num_on_surface += c.freedom == VertexFreedom::OnSurface;
+    res.num_on_curve += c.freedom == VertexFreedom::OnCurve;
     res.num_interior += c.freedom == VertexFreedom::Interior;
   }
   WorkMesh w;

@@ -12,17 +12,18 @@
 // fail, an interior edge of the sliver is split and the new free vertex smoothed, their vertex insertion; an edge
 // inside a planar facet is split too, its new vertex on the facet: issue 16's sliver-removing points on the boundary).
 //
-// Conformity is exact by construction: an input vertex never moves (but a CAD front end's surface mesh node inside a
-// planar or curved face, no CAD feature, moves as a Steiner vertex there does); a vertex on an input segment moves only along
+// Conformity is exact by construction: an input vertex never moves (but a CAD front end's mesh node inside a CAD
+// edge or face, no CAD vertex, moves as a Steiner vertex there does); a vertex on an input segment moves only along
 // that segment's line, a vertex inside an input facet only within the facet's plane, with every tetrahedron of its
 // star positively oriented and every boundary triangle of its star keeping its orientation; flips touch no boundary
 // or internal-facet face, no segment edge, and join only tetrahedra of one region; a split inside a facet puts its
 // vertex on the facet and splits the two faces holding the edge, each half keeping the facet. So the boundary
 // surface, every input facet (as a union of mesh faces) and each region's volume are those of the input mesh.
 // The exceptions are on CAD inputs (ImproveOptions::project_to_boundary), where the mesh is already fitted to the
-// CAD surface, not the PLC's chords: a vertex inside a curved CAD face (OnSurface) moves on that surface, and a cap
-// (a sliver with two boundary faces on one CAD face) is removed by flipping their shared edge (cap_removal.cpp); the
-// boundary stays a mesh of the same CAD faces with every node on its face.
+// CAD surface, not the PLC's chords: a vertex inside a curved CAD face (OnSurface) moves on that surface, one inside
+// a curved CAD edge (OnCurve) along that curve, and a cap (a sliver with two boundary faces on one CAD face) is
+// removed by flipping their shared edge (cap_removal.cpp); the boundary stays a mesh of the same CAD faces and
+// edges with every node on its face or edge.
 // Deterministic: ordered iteration, no global random generator; the same mesh in gives the same mesh out.
 #pragma once
 
@@ -44,13 +45,17 @@ enum class VertexFreedom : std::uint8_t {
   InFacet,    // inside one input facet (or one planar internal interface): orthogonal to direction (the normal)
   OnSurface,  // inside one curved CAD face (ImproveOptions::project_to_boundary): on that surface, moved in its
               // tangent plane (direction: the normal of the faces around it) and projected back onto it
+  OnCurve,    // inside one curved CAD edge (ImproveOptions::project_to_boundary): on that curve, moved along its
+              // tangent (direction: the chord between its two neighbours on the edge) and projected back onto it
   Interior,   // on no boundary or internal face: free
 };
 
 struct VertexConstraint {
   VertexFreedom freedom = VertexFreedom::Fixed;
-  Point3 direction{0, 0, 0};  // unit: the line's direction (OnSegment) or the plane's normal (InFacet, OnSurface)
+  Point3 direction{0, 0, 0};  // unit: the line's direction (OnSegment, OnCurve) or the plane's normal (InFacet,
+                              // OnSurface)
   int cad_face = 0;           // OnSurface: the CAD face number (TetMesh::face_marker) it stays on
+  int cad_edge = 0;           // OnCurve: the CAD edge number (TetMesh::edge_marker) it stays on
 };
 
 // The freedom of every vertex of `mesh` (points, tets, faces with face_facet, edges), judged from the mesh's faces
@@ -67,6 +72,8 @@ struct VertexConstraint {
 //   with `curved`, a vertex that would be Fixed, on no marked TetMesh edge (a CAD edge), whose incident faces all
 //     carry one face marker > 0 (inside a curved CAD face, which the CAD front end writes as triangle facets)
 //                                                                      -> OnSurface;
+//   with `curved`, a vertex that would be Fixed, not an input vertex, on exactly two marked TetMesh edges that carry
+//     one edge marker > 0 (inside a curved CAD edge)                   -> OnCurve;
 //   anything else                                                      -> Fixed.
 std::vector<VertexConstraint> classify_vertices(const TetMesh& mesh, const Plc& plc, bool curved = false);
 
@@ -119,7 +126,7 @@ struct ImproveResult {
   std::size_t num_flips = 0;           // 2-3 flips plus edge removals
   std::size_t num_flips23 = 0;
   std::size_t num_edge_removals = 0;   // of which n = 3 are 3-2 flips
-  std::size_t num_fixed = 0, num_on_segment = 0, num_in_facet = 0, num_on_surface = 0,
+  std::size_t num_fixed = 0, num_on_segment = 0, num_in_facet = 0, num_on_surface = 0, num_on_curve = 0,
               num_interior = 0;  // classification counts
   double min_dihedral_before_deg = 0;  // over all tetrahedra
   double min_dihedral_after_deg = 0;

@@ -105,8 +105,8 @@ void improve_extracted(detail::MeshState& s, MeshResult& result, const std::vect
              std::to_string(r.num_flips23) + " 2-3, " + std::to_string(r.num_edge_removals) +
              " edge removals), " + std::to_string(r.num_insertions) + " edge splits (" +
              std::to_string(r.num_boundary_insertions) + " inside a facet), " + std::to_string(r.num_caps_removed) +
-             " caps removed; " + std::to_string(r.num_on_surface) +
-             " vertices movable on curved CAD faces; below " +
+             " caps removed; " + std::to_string(r.num_on_surface) + " vertices movable on curved CAD faces, " +
+             std::to_string(r.num_on_curve) + " on curved CAD edges; below " +
              std::to_string(options.sliver_angle_deg) + " deg: " +
              std::to_string(r.num_below_before) + " -> " + std::to_string(r.num_below_after));
 }
