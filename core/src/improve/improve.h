@@ -103,12 +103,13 @@ struct ImproveOptions {
   bool cap_removal = true;
   // Largest ring of an edge removal (the n-to-2n-4 flip); 3 is the 3-2 flip.
   int max_edge_ring = 7;
-  // MeshOptions::project_to_boundary (the mesher passes it; called here with edge 0): moves p onto curved CAD face
-  // `face` (a TetMesh::face_marker) and returns true, or returns false (a plane, a failure). Set, the vertices inside
-  // one curved face are OnSurface and smoothed on it: every position tried is this projection of a point of the
-  // tangent plane, so the vertex stays on the CAD surface. Empty: they are Fixed. (Vertices inside a curved CAD edge,
-  // moved along it the same way, made no measured difference: part.step 25 tets below 10 degrees instead of 22,
-  // wrenchnut.stp 26 below 15 instead of 28; they stay Fixed.)
+  // MeshOptions::project_to_boundary (the mesher passes it): moves p onto curved CAD edge `edge` (a
+  // TetMesh::edge_marker; face 0) or curved CAD face `face` (a TetMesh::face_marker; edge 0) and returns true, or
+  // returns false (a line, a plane, a failure). Set, the vertices inside one curved face are OnSurface and those
+  // inside one curved edge OnCurve, smoothed on it: every position tried is this projection of a point of the
+  // tangent plane or line, so the vertex stays on the CAD surface. Empty: they are Fixed. (With only the Rule 1
+  // points of a curved edge free, and the front end's edge nodes Fixed, moving along the edge made no measured
+  // difference; with both free, wrenchnut.stp at --size 10.15 went from 4 tets below 10 degrees to 0.)
   std::function<bool(int edge, int face, Point3& p)> project_to_boundary;
   // Polled once per bad tetrahedron; true stops the pass (the mesh stays valid).
   std::function<bool()> cancel;
