@@ -10,6 +10,7 @@
 // Exit 2 for bad input or usage, 4 for a resource limit; nothing is written then.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -114,8 +115,23 @@ int run_mesh(MeshArgs& args) {
   args.options.cancel = make_cancel(args.limits);
   std::optional<CadFitReport> corner_fit;
   if (has_cad_faces(args.input))
-    args.options.before_improve = [&](TetMesh& mesh) {
-      corner_fit = fit_to_cad_input(args.input, args.input_options, CadFitOptions{}, mesh);
+    args.options.before_improve = [&](TetMesh& mesh) {  // once per solid meshed apart (components.h): summed
+      const CadFitReport r = fit_to_cad_input(args.input, args.input_options, CadFitOptions{}, mesh);
+      if (!corner_fit) {
+        corner_fit = r;
+        return;
+      }
+      CadFitReport& sum = *corner_fit;
+      sum.num_corner_targets += r.num_corner_targets;
+      sum.max_offset_before = std::max(sum.max_offset_before, r.max_offset_before);
+      sum.corners.num_requested += r.corners.num_requested;
+      sum.corners.num_full += r.corners.num_full;
+      sum.corners.num_dragged += r.corners.num_dragged;
+      sum.corners.num_optimised += r.corners.num_optimised;
+      sum.corners.num_partial += r.corners.num_partial;
+      sum.corners.num_refused += r.corners.num_refused;
+      sum.num_fixed_vertices += r.num_fixed_vertices;
+      sum.num_flat_caps_removed += r.num_flat_caps_removed;
     };
   const bool tty = isatty(fileno(stderr)) != 0;
   ProgressCallback progress;

@@ -22,6 +22,7 @@
 
 #include "qualmesh/quality.h"
 #include "improve/improve.h"
+#include "refine/components.h"
 #include "refine/refine_state.h"
 
 namespace qualmesh {
@@ -260,10 +261,10 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
   return result;
 }
 
-}  // namespace
-
-MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCallback& progress,
-                    const LogCallback& log) {
+// One PLC in one triangulation: the relaxed rule's fallbacks (MeshStats::boundary_projection_dropped,
+// encroaching_fell_back) when a run gives up.
+MeshResult mesh_whole(const Plc& plc, const MeshOptions& options, const ProgressCallback& progress,
+                      const LogCallback& log) {
   if (auto result = mesh_attempt(plc, options, progress, log)) return std::move(*result);
   MeshOptions retry = options;
   const bool projected = options.project_to_boundary != nullptr;
@@ -285,6 +286,26 @@ MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCa
   result.stats.encroaching_fell_back = true;
   result.stats.boundary_projection_dropped = projected;
   return result;
+}
+
+}  // namespace
+
+MeshResult mesh_plc(const Plc& plc, const MeshOptions& options, const ProgressCallback& progress,
+                    const LogCallback& log) {
+  // Separate closed surfaces (solids of an assembly that do not touch) one by one (components.h).
+  const std::vector<detail::PlcComponent> parts = detail::separate_components(plc);
+  if (parts.empty()) return mesh_whole(plc, options, progress, log);
+  if (log) log("components: " + std::to_string(parts.size()) + " separate closed surfaces, meshed one by one");
+  std::vector<MeshResult> results;
+  std::vector<const TetMesh*> meshes;
+  for (const detail::PlcComponent& part : parts) {
+    results.push_back(mesh_whole(part.plc, options, progress, log));
+    if (results.back().status != MeshStatus::Ok) return detail::merge_component_results(parts, results);
+  }
+  for (const MeshResult& r : results) meshes.push_back(&r.mesh);
+  if (!detail::meshed_volumes_meet(meshes)) return detail::merge_component_results(parts, results);
+  if (log) log("components: one lies inside or on another's volume; meshing them together");
+  return mesh_whole(plc, options, progress, log);
 }
 
 }  // namespace qualmesh
