@@ -237,6 +237,10 @@ struct MeshCancelled : std::runtime_error {
 
 // Meshes the volume bounded by `plc` (regions separated by internal facets; hole seeds remove regions; the outside
 // of the closed boundary is not meshed). Deterministic: the same input and options give the same mesh, bit for bit.
+// Closed surfaces that share no vertex and lie outside each other (solids of an assembly that do not touch) are
+// meshed one by one and the meshes joined, each component's points after the previous one's (the statistics are
+// summed); so a small gap between two solids draws no refinement. Progress then runs through the stages once per
+// component.
 MeshResult mesh_plc(const Plc& plc, const MeshOptions& options = {}, const ProgressCallback& progress = {},
                     const LogCallback& log = {});
 

@@ -61,9 +61,9 @@ struct VertexConstraint {
 // The freedom of every vertex of `mesh` (points, tets, faces with face_facet, edges), judged from the mesh's faces
 // and the input `plc` (its vertices are the fixed points; its facets give the planes, its segments the lines):
 //   input vertex (coordinates equal to a PLC vertex; with `curved`, a CAD run, not a surface mesh node of the CAD
-//     front end: one that appears only alone in facet loops (inside a planar face), or one on no segment whose
-//     loops all belong to facets that share their marker > 0 (inside a curved face); those are judged as below)
-//                                                                      -> Fixed;
+//     front end: one that appears only alone in facet loops (inside a planar face), one on no segment whose loops
+//     all belong to facets that share their marker > 0 (inside a curved face), or one on exactly two segments of
+//     one marker > 0 (inside a CAD edge); those are judged as below)   -> Fixed;
 //   on a crease (an edge of boundary faces that is shared by faces of two input facets, or by one or three faces),
 //     on a marked TetMesh edge, or on an explicit PLC segment off the facet polygons, with exactly two such
 //     collinear edges                                                  -> OnSegment;

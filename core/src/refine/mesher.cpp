@@ -9,6 +9,7 @@
 //               at the slivers pumping left away from acute input angles (sliver_insertion.cpp, unless
 //               MeshOptions::sliver_insertion is false); all skipped with MeshOptions::pump = false;
 //   Extraction  the TetMesh and its quality figures (extract.cpp).
+// Separate closed surfaces run the stages one by one, and their meshes are joined (components.cpp).
 #include "qualmesh/mesher.h"
 
 #include <algorithm>
