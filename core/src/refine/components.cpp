@@ -37,17 +37,23 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<
 
 // The faces of `mesh`'s tets that belong to one tet only: the boundary of its volume.
 Triangles hull_triangles(const TetMesh& mesh) {
-  std::map<std::array<Index, 3>, int> count;
+  std::vector<std::array<Index, 3>> faces;
+  faces.reserve(4 * mesh.tets.size());
   for (const auto& t : mesh.tets)
     for (int k = 0; k < 4; ++k) {
       std::array<Index, 3> f{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]};
       std::sort(f.begin(), f.end());
-      ++count[f];
+      faces.push_back(f);
     }
+  std::sort(faces.begin(), faces.end());
   Triangles out;
   const auto point = [&](Index v) { return K::Point_3(mesh.points[v][0], mesh.points[v][1], mesh.points[v][2]); };
-  for (const auto& [f, n] : count)
-    if (n == 1) out.emplace_back(point(f[0]), point(f[1]), point(f[2]));
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i + 1;
+    while (j < faces.size() && faces[j] == faces[i]) ++j;
+    if (j - i == 1) out.emplace_back(point(faces[i][0]), point(faces[i][1]), point(faces[i][2]));
+    i = j;
+  }
   return out;
 }
 
