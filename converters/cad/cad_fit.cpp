@@ -205,10 +205,10 @@ class Projector {
           data->to_global = location.Transformation();
           data->to_local = location.Transformation().Inverted();
           data->precision = std::max(1e-12, 1e-3 * BRep_Tool::Tolerance(face));
-          data->planar = GeomAdaptor_Surface(surface).GetType() == GeomAbs_Plane;
+          const GeomAbs_SurfaceType type = GeomAdaptor_Surface(surface).GetType();
+          data->planar = type == GeomAbs_Plane;
           BRepBndLib::Add(face, data->search_box, Standard_False);
           data->search_box.Enlarge(BRep_Tool::Tolerance(face));
-          const GeomAbs_SurfaceType type = GeomAdaptor_Surface(surface).GetType();
           if (!data->search_box.IsVoid() && (type == GeomAbs_BSplineSurface || type == GeomAbs_BezierSurface ||
                                              type == GeomAbs_SurfaceOfExtrusion ||
                                              type == GeomAbs_SurfaceOfRevolution || type == GeomAbs_OffsetSurface))

@@ -1,4 +1,4 @@
-// Private to the mesh checker (mesh_check*.cpp): the geometry of one input facet as the checker needs it (plane,
+// Private to the mesh checker (mesh_check*.cpp; refine/components.cpp uses FacetGeometry too): the geometry of one input facet as the checker needs it (plane,
 // 2D projection, loop nesting, area, point-in-facet test), the reference-volume computation, and the local
 // regularity (weighted Delaunay) test, whose exact CGAL predicates stay in mesh_check_regularity.cpp.
 #pragma once

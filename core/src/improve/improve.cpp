@@ -156,10 +156,13 @@ std::vector<VertexConstraint> classify_vertices(const TetMesh& mesh, const Plc& 
   for (const Facet& f : plc.facets) normals.push_back(facet_normal(plc, f));
   const std::vector<Segment> extra = extra_segments(plc);
   std::vector<std::vector<Index>> marked(nv);  // neighbours along marked TetMesh edges
-  for (const auto& e : mesh.edges) {
-    marked[e[0]].push_back(e[1]);
-    marked[e[1]].push_back(e[0]);
-  }
+  std::vector<std::vector<int>> marked_edge(nv);  // and those edges' markers (when the mesh has them)
+  const bool edge_markers = mesh.edge_marker.size() == mesh.edges.size();
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e)
+    for (int end = 0; end < 2; ++end) {
+      marked[mesh.edges[e][end]].push_back(mesh.edges[e][1 - end]);
+      if (edge_markers) marked_edge[mesh.edges[e][end]].push_back(mesh.edge_marker[e]);
+    }
   struct Link {
     Index q;
     int count;
@@ -231,22 +234,13 @@ std::vector<VertexConstraint> classify_vertices(const TetMesh& mesh, const Plc& 
     }
   }
   if (!curved) return out;
-  if (mesh.edge_marker.size() == mesh.edges.size()) {
-    // Inside one curved CAD edge: two marked edges with one marker. (Where the edge is straight, the crease test
-    // above made it OnSegment already.)
-    std::vector<std::array<int, 2>> edge_markers(nv, {0, 0});
-    std::vector<int> count(nv, 0);
-    for (std::size_t e = 0; e < mesh.edges.size(); ++e)
-      for (Index x : mesh.edges[e]) {
-        if (count[x] < 2) edge_markers[x][count[x]] = mesh.edge_marker[e];
-        ++count[x];
-      }
-    for (Index v = 0; v < nv; ++v) {
-      if (out[v].freedom != VertexFreedom::Fixed || is_input[v] || count[v] != 2 || marked[v].size() != 2) continue;
-      const int edge = edge_markers[v][0];
-      const Vec d = unit(sub(mesh.points[marked[v][1]], mesh.points[marked[v][0]]));
-      if (edge > 0 && edge_markers[v][1] == edge && norm(d) > 0) out[v] = {VertexFreedom::OnCurve, d, 0, edge};
-    }
+  // Inside one curved CAD edge: two marked edges with one marker. (Where the edge is straight, the crease test above
+  // made it OnSegment already.)
+  for (Index v = 0; edge_markers && v < nv; ++v) {
+    if (out[v].freedom != VertexFreedom::Fixed || is_input[v] || marked[v].size() != 2) continue;
+    const int edge = marked_edge[v][0];
+    const Vec d = unit(sub(mesh.points[marked[v][1]], mesh.points[marked[v][0]]));
+    if (edge > 0 && marked_edge[v][1] == edge && norm(d) > 0) out[v] = {VertexFreedom::OnCurve, d, 0, edge};
   }
   if (mesh.face_marker.size() != mesh.faces.size()) return out;
   for (Index v = 0; v < nv; ++v) {

@@ -8,10 +8,11 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <map>
 #include <numeric>
 #include <stdexcept>
+
+#include "mesh_check_internal.h"
 
 namespace qualmesh::detail {
 
@@ -57,45 +58,25 @@ Triangles hull_triangles(const TetMesh& mesh) {
   return out;
 }
 
-// Whether `p` is inside the closed surface of `plc` by ray parity: a ray crosses a facet where it meets the facet's
-// plane at a point covered by an odd number of its loops (the even-odd rule of Facet, holes included). Internal
-// facets make extra crossings, so a component with some may be taken for containing a point it does not: then the
-// input is only meshed whole, as before. A vote of three rays, as in meshed_volumes_meet.
-bool plc_contains(const Plc& plc, const Point3& p) {
-  const double directions[3][3] = {{0.5773, 0.6113, 0.5417}, {-0.6211, 0.2973, 0.7251}, {0.3187, -0.8719, 0.3717}};
+// Directions of no special slope, so that a ray through an edge or a vertex of a surface is unlikely; a vote of the
+// three settles the rare one that is.
+constexpr double kRayDirections[3][3] = {
+    {0.5773, 0.6113, 0.5417}, {-0.6211, 0.2973, 0.7251}, {0.3187, -0.8719, 0.3717}};
+
+// Whether `p` is inside the closed surface made of `facets` by ray parity: a ray crosses a facet where it meets the
+// facet's plane at a point of the facet (FacetGeometry::contains: the even-odd rule of its loops, less its hole
+// points). Internal facets make extra crossings, so a component with some may be taken for containing a point it
+// does not: then the input is only meshed whole, as before.
+bool surface_contains(const std::vector<check::FacetGeometry>& facets, const Point3& p) {
   int odd = 0;
-  for (const auto& d : directions) {
+  for (const auto& d : kRayDirections) {
     int crossings = 0;
-    for (const Facet& f : plc.facets) {
-      double n[3] = {0, 0, 0};
-      for (const auto& loop : f.polygons)
-        for (std::size_t i = 0; loop.size() >= 3 && i < loop.size(); ++i) {
-          const Point3& a = plc.vertices[loop[i]];
-          const Point3& b = plc.vertices[loop[(i + 1) % loop.size()]];
-          n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-          n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-          n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-        }
+    for (const check::FacetGeometry& g : facets) {
+      const Point3& n = g.normal;
       const double denom = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
-      if (denom == 0 || f.polygons.empty() || f.polygons.front().empty()) continue;
-      const Point3& o = plc.vertices[f.polygons.front().front()];
-      const double t = (n[0] * (o[0] - p[0]) + n[1] * (o[1] - p[1]) + n[2] * (o[2] - p[2])) / denom;
-      if (!(t > 0)) continue;
-      const double x[3] = {p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]};
-      // In the plane of the two coordinates the normal has least of.
-      const int drop = std::fabs(n[0]) >= std::fabs(n[1]) && std::fabs(n[0]) >= std::fabs(n[2]) ? 0
-                       : std::fabs(n[1]) >= std::fabs(n[2])                                    ? 1
-                                                                                              : 2;
-      const int u = (drop + 1) % 3, v = (drop + 2) % 3;
-      bool inside = false;
-      for (const auto& loop : f.polygons)
-        for (std::size_t i = 0; loop.size() >= 3 && i < loop.size(); ++i) {
-          const Point3& a = plc.vertices[loop[i]];
-          const Point3& b = plc.vertices[loop[(i + 1) % loop.size()]];
-          if ((a[v] > x[v]) != (b[v] > x[v]) && x[u] < a[u] + (x[v] - a[v]) * (b[u] - a[u]) / (b[v] - a[v]))
-            inside = !inside;
-        }
-      crossings += inside;
+      if (g.degenerate || denom == 0) continue;
+      const double t = (g.offset - (n[0] * p[0] + n[1] * p[1] + n[2] * p[2])) / denom;
+      if (t > 0 && g.contains({p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]})) ++crossings;
     }
     odd += crossings % 2;
   }
@@ -154,9 +135,12 @@ std::vector<PlcComponent> separate_components(const Plc& plc) {
     part.facets.push_back(fi);
   }
   // One inside another's closed surface (a cavity's wall inside its solid's outer wall, an inclusion): whole.
-  for (std::size_t i = 0; i < parts.size(); ++i)
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    std::vector<check::FacetGeometry> facets;
+    for (const Facet& f : parts[i].plc.facets) facets.push_back(check::make_facet_geometry(parts[i].plc, f));
     for (std::size_t j = 0; j < parts.size(); ++j)
-      if (i != j && plc_contains(parts[i].plc, parts[j].plc.vertices.front())) return {};
+      if (i != j && surface_contains(facets, parts[j].plc.vertices.front())) return {};
+  }
   for (PlcComponent& part : parts) {
     part.plc.holes = plc.holes;
     part.plc.regions = plc.regions;
@@ -174,9 +158,6 @@ bool meshed_volumes_meet(const std::vector<const TetMesh*>& meshes) {
     const CGAL::Bbox_3 box = tree.bbox();
     const double dx = box.xmax() - box.xmin(), dy = box.ymax() - box.ymin(), dz = box.zmax() - box.zmin();
     const double sq_touch = 1e-18 * (dx * dx + dy * dy + dz * dz);
-    // Directions of no special slope, so that a ray through an edge or a vertex of the hull is unlikely; a vote of
-    // three settles the rare one that is.
-    const K::Vector_3 directions[3] = {{0.5773, 0.6113, 0.5417}, {-0.6211, 0.2973, 0.7251}, {0.3187, -0.8719, 0.3717}};
     for (std::size_t j = 0; j < meshes.size(); ++j) {
       if (j == i) continue;
       const std::vector<Point3>& points = meshes[j]->points;
@@ -188,7 +169,8 @@ bool meshed_volumes_meet(const std::vector<const TetMesh*>& meshes) {
           continue;
         if (tree.squared_distance(p) <= sq_touch) return true;
         int odd = 0;
-        for (const K::Vector_3& d : directions) odd += tree.number_of_intersected_primitives(K::Ray_3(p, d)) % 2;
+        for (const auto& d : kRayDirections)
+          odd += tree.number_of_intersected_primitives(K::Ray_3(p, K::Vector_3(d[0], d[1], d[2]))) % 2;
         if (odd >= 2) return true;
       }
     }
