@@ -106,6 +106,14 @@ void add_input_options(CLI::App& command, InputOptions& options) {
   command.add_flag("--keep-triangles", options.keep_triangles,
                    "Surface inputs: keep every triangle as its own facet (default: merge adjacent coplanar "
                    "triangles into polygonal facets)");
+  command
+      .add_option("--coplanar-tolerance", options.coplanar_tolerance,
+                  "Surface and TetGen inputs: also merge adjacent facets that are coplanar only up to this fraction of "
+                  "the bounding-box diagonal, as TetGen merges triangles within 0.1 deg of coplanar (e.g. 1e-6, the "
+                  "planarity tolerance of validation). Needle triangles of flat faces that rounding bent a hair then "
+                  "stop being sharp input angles; the mesh boundary lies within that distance of the input instead "
+                  "of exactly on it (default 0: exactly coplanar facets only)")
+      ->check(CLI::Range(0.0, 1e-6));
   command.add_option("--deflection", options.deflection,
                      "CAD inputs with --cad-surface tessellation: absolute chordal deflection of curved faces, in "
                      "model units (default: relative)");
@@ -163,6 +171,7 @@ Plc load_input(const std::string& path, const InputOptions& options, std::vector
     if (cad_size_used && options.size > 0) *cad_size_used = options.size;
     ReadOptions read_options;
     read_options.merge_coplanar = !options.keep_triangles;
+    read_options.coplanar_tolerance = options.coplanar_tolerance;
     return read_plc(path, read_options, notes);
   }
   if (is_cad_input(path)) {

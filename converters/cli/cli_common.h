@@ -32,6 +32,7 @@ void register_mesh_command(CLI::App& app, int& exit_code);
 // Options shared by the commands that read an input model.
 struct InputOptions {
   bool keep_triangles = false;       // surface inputs: do not merge coplanar triangles into polygonal facets
+  double coplanar_tolerance = 0;     // surface and TetGen inputs: merge facets coplanar up to this fraction of D
   double deflection = 0;             // CAD: absolute chordal deflection of curved faces (0 = relative)
   double relative_deflection = 0.001;  // CAD: deflection relative to the bounding-box diagonal
   // CAD size field (CadOptions; model units): --size, --min-size, --curvature, --gradation, --local-size NAME=H,

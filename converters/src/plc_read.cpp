@@ -49,6 +49,9 @@ bool is_degenerate_suspect(const std::vector<Point3>& vertices, const std::vecto
 
 namespace {
 
+// The tolerance the reader's note suggests: validate_plc's planarity tolerance, so a merged facet is always valid.
+constexpr double kSuggestedCoplanarTolerance = 1e-6;
+
 std::string point_text(const Point3& p) {
   char text[100];
   std::snprintf(text, sizeof text, "(%.17g, %.17g, %.17g)", p[0], p[1], p[2]);
@@ -132,7 +135,19 @@ Plc finish_surface(SurfaceSoup soup, const std::string& path, const ReadOptions&
   for (std::size_t f = 0; f < plc.facets.size(); ++f) {
     if (is_degenerate_suspect(plc.vertices, plc.facets[f].polygons[0])) suspects.emplace(plc.facets[f].polygons[0], f);
   }
-  if (options.merge_coplanar) plc = merge_coplanar_facets(plc);
+  if (options.merge_coplanar) {
+    Plc merged = merge_coplanar_facets(plc, options.coplanar_tolerance);
+    if (notes && options.coplanar_tolerance == 0) {
+      // Say when rounding alone keeps flat faces apart: their needle triangles stay sharp input angles.
+      const std::size_t near = merge_coplanar_facets(plc, kSuggestedCoplanarTolerance).facets.size();
+      if (near < merged.facets.size()) {
+        notes->push_back(std::to_string(merged.facets.size()) + " facets after merging exactly coplanar ones; " +
+                         std::to_string(near) + " with --coplanar-tolerance 1e-6 (faces flat to 1e-6 of the " +
+                         "bounding-box diagonal, whose needle triangles are sharp input angles otherwise)");
+      }
+    }
+    plc = std::move(merged);
+  }
   if (!suspects.empty()) {
     for (const Facet& facet : plc.facets) {
       if (facet.polygons.size() != 1) continue;
@@ -188,6 +203,7 @@ Plc read_plc(const std::string& path, const ReadOptions& options, std::vector<st
   Plc plc;
   if (ext == ".poly" || ext == ".smesh") {
     plc = plc_io::read_tetgen_poly(path);
+    if (options.coplanar_tolerance > 0) plc = merge_coplanar_facets(plc, options.coplanar_tolerance);
   } else if (ext == ".node") {
     plc = plc_io::read_tetgen_node(path);
   } else if (ext == ".off") {

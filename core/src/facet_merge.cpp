@@ -8,6 +8,13 @@
 // smallest projected vertex, which is a strictly convex corner of a simple polygon. A facet's interior lies left of
 // its directed edges when that sign is positive.
 //
+// Tolerance (merge_coplanar_facets' relative_tolerance > 0). Facets are grown from a seed, in index order: a facet
+// joins the seed's group across an edge of two uses when all its vertices lie within the tolerance of the seed's
+// plane (so the group cannot drift away from one plane along a gently curved strip) and the sides agree, decided in
+// the projection along the seed normal's largest component. The merged facet is kept only when its vertices are
+// within the tolerance of the plane plc_validate measures (compute_facet_frame), else the group stays unmerged.
+// With a zero tolerance the groups are exactly those of the exact rule above.
+//
 // Topology. The facets of a group are re-oriented like the group's first facet; directed edges that occur both ways
 // cancel, and the boundary edges left are chained into closed loops, split at repeated vertices into simple loops.
 // By the odd-count rule of plc.h, any such decomposition describes the union (the winding number of the boundary is
@@ -15,13 +22,17 @@
 // leaves the group unmerged.
 #include "qualmesh/facet_merge.h"
 
+#include "facet_triangulation.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <numeric>
+#include <queue>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -254,9 +265,82 @@ bool merge_group(const Plc& plc, const std::vector<Index>& group, const std::vec
   return true;
 }
 
+// True when every vertex of `facet` lies within `tolerance` of its plane as plc_validate measures it.
+bool within_plane(const Plc& plc, const Facet& facet, double tolerance) {
+  const auto frame = detail::compute_facet_frame(plc.vertices, facet);
+  if (!frame) return false;
+  for (const auto& loop : facet.polygons)
+    for (Index v : loop)
+      if (!(std::abs(detail::signed_distance(*frame, plc.vertices[v])) <= tolerance)) return false;
+  return true;
+}
+
+// The projection that drops the largest component of the normal of triangle abc (one-to-one on its plane and on
+// planes near it).
+Projection dominant_projection(const P3& a, const P3& b, const P3& c) {
+  const Kernel::Vector_3 n = CGAL::cross_product(b - a, c - a);
+  const double x = std::abs(n.x()), y = std::abs(n.y()), z = std::abs(n.z());
+  if (z >= x && z >= y) return Projection::DropZ;
+  return x >= y ? Projection::DropX : Projection::DropY;
+}
+
+// Groups of facets within `tolerance` (model units, > 0) of their seed's plane, grown across the edges in `pairs`
+// (two facet uses each); see the file comment. `shapes` of the members get the seed's projection and their
+// orientation in it, as merge_group reads them.
+void grow_near_coplanar_groups(const Plc& plc, const std::vector<std::pair<EdgeUse, EdgeUse>>& pairs,
+                               double tolerance, std::vector<FacetShape>& shapes, DisjointSets& sets) {
+  const std::size_t n = plc.facets.size();
+  std::vector<std::vector<std::pair<EdgeUse, EdgeUse>>> adjacent(n);  // (use by this facet, use by the other)
+  for (const auto& [x, y] : pairs) {
+    adjacent[x.facet].push_back({x, y});
+    adjacent[y.facet].push_back({y, x});
+  }
+  std::vector<char> assigned(n, 0);
+  for (std::size_t seed = 0; seed < n; ++seed) {
+    if (assigned[seed] || !shapes[seed].mergeable) continue;
+    assigned[seed] = 1;
+    const FacetShape& s = shapes[seed];
+    const P3 a = to_cgal(plc.vertices[s.plane[0]]), b = to_cgal(plc.vertices[s.plane[1]]);
+    const P3 c = to_cgal(plc.vertices[s.plane[2]]);
+    Kernel::Vector_3 normal = CGAL::cross_product(b - a, c - a);
+    normal = normal / std::sqrt(normal.squared_length());
+    const Projection projection = dominant_projection(a, b, c);
+    const auto orientation = [&](std::size_t f) {
+      return loop_orientation(plc.facets[f].polygons[0], plc.vertices, projection);
+    };
+    const auto near_plane = [&](std::size_t f) {
+      for (Index v : plc.facets[f].polygons[0])
+        if (!(std::abs((to_cgal(plc.vertices[v]) - a) * normal) <= tolerance)) return false;
+      return true;
+    };
+    std::vector<Index> members{static_cast<Index>(seed)};
+    std::queue<std::pair<Index, int>> queue;  // member, its orientation in `projection`
+    queue.push({static_cast<Index>(seed), orientation(seed)});
+    while (!queue.empty()) {
+      const auto [f, f_sign] = queue.front();
+      queue.pop();
+      for (const auto& [mine, other] : adjacent[f]) {
+        const Index g = other.facet;
+        if (assigned[g] || !shapes[g].mergeable || !near_plane(g)) continue;
+        const int g_sign = orientation(g);
+        if (g_sign == 0 || f_sign * mine.direction != -(g_sign * other.direction)) continue;
+        assigned[g] = 1;
+        members.push_back(g);
+        queue.push({g, g_sign});
+      }
+    }
+    if (members.size() < 2) continue;
+    for (Index f : members) {
+      shapes[f].projection = projection;
+      shapes[f].orientation = orientation(f);
+      sets.unite(static_cast<Index>(seed), f);
+    }
+  }
+}
+
 }  // namespace
 
-Plc merge_coplanar_facets(const Plc& plc) {
+Plc merge_coplanar_facets(const Plc& plc, double relative_tolerance) {
   const std::size_t n = plc.facets.size();
   std::vector<FacetShape> shapes(n);
   for (std::size_t f = 0; f < n; ++f) shapes[f] = describe_facet(plc.facets[f], plc.vertices);
@@ -281,8 +365,10 @@ Plc merge_coplanar_facets(const Plc& plc) {
     return std::tie(x.a, x.b, x.facet, x.direction) < std::tie(y.a, y.b, y.facet, y.direction);
   });
 
+  const double tolerance = relative_tolerance > 0 ? relative_tolerance * bounding_box(plc).diagonal() : 0.0;
   std::map<EdgeKey, int> global_uses;
   DisjointSets sets(n);
+  std::vector<std::pair<EdgeUse, EdgeUse>> pairs;  // tolerance: edges across which facets may join
   for (std::size_t i = 0; i < uses.size();) {
     std::size_t j = i;
     while (j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b) ++j;
@@ -292,6 +378,11 @@ Plc merge_coplanar_facets(const Plc& plc) {
       const EdgeUse& y = uses[i + 1];
       if (x.facet != kNoIndex && y.facet != kNoIndex && x.facet != y.facet && shapes[x.facet].mergeable &&
           shapes[y.facet].mergeable) {
+        if (tolerance > 0) {
+          pairs.push_back({x, y});
+          i = j;
+          continue;
+        }
         const FacetShape& fx = shapes[x.facet];
         const FacetShape& fy = shapes[y.facet];
         const P3 a = to_cgal(plc.vertices[fx.plane[0]]);
@@ -305,6 +396,7 @@ Plc merge_coplanar_facets(const Plc& plc) {
     }
     i = j;
   }
+  if (tolerance > 0) grow_near_coplanar_groups(plc, pairs, tolerance, shapes, sets);
 
   std::vector<std::vector<Index>> groups(n);
   for (std::size_t f = 0; f < n; ++f) groups[sets.find(static_cast<Index>(f))].push_back(static_cast<Index>(f));
@@ -320,7 +412,8 @@ Plc merge_coplanar_facets(const Plc& plc) {
       continue;
     }
     Facet facet;
-    if (merge_group(plc, group, shapes, global_uses, facet)) {
+    const bool built = merge_group(plc, group, shapes, global_uses, facet);
+    if (built && (tolerance == 0 || within_plane(plc, facet, tolerance))) {
       merged.facets.push_back(std::move(facet));
     } else {
       for (Index g : group) merged.facets.push_back(plc.facets[g]);

@@ -21,6 +21,10 @@ struct ReadOptions {
   // (merge_coplanar_facets() of facet_merge.h), so that an STL box becomes six squares. TetGen files are never
   // merged.
   bool merge_coplanar = true;
+  // > 0: facets coplanar up to this fraction of the bounding-box diagonal merge too (merge_coplanar_facets'
+  // relative_tolerance), in surfaces (with merge_coplanar) and, only when asked for so, in TetGen .poly/.smesh files.
+  // The boundary of a mesh then lies within that distance of the input triangles instead of on them.
+  double coplanar_tolerance = 0;
   // Surface readers: repair degenerate triangles exactly, as TetGen meshes such files (issue 18): drop a triangle
   // that repeats a vertex; drop one with three collinear corners (a T-junction in disguise) and split the face across
   // its long edge at the middle corner. The surface and its volume are unchanged. read_plc's `notes` say what was
