@@ -1,7 +1,6 @@
 // `qualmesh check MESH [--ref INPUT] [--json] [--require-regular | --no-regularity]`: re-checks a tetrahedral mesh
 // from scratch (ours or a peer's: TetGen, Gmsh, Medit): orientation, face matching, conformity to the input, the
 // (weighted) Delaunay property (counted; a defect only with --require-regular), quality figures. Exit 3 on defects.
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -57,36 +56,6 @@ std::string judge_against_cad(const CheckArgs& args, const TetMesh& mesh, CheckR
   return line;
 }
 
-// The relative volume error a reference read with --coplanar-tolerance leaves open: its merged facets are flat only
-// to t D, so a facet of area A may bound any volume within t D A of another triangulation of it. Bounded by
-// t D (sum of facet areas) / V, with V the mesh's volume (the reference's, to that bound).
-double merged_facets_volume_tolerance(const Plc& reference, const TetMesh& mesh, double relative_tolerance) {
-  const auto sub = [](const Point3& a, const Point3& b) { return Point3{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
-  double area = 0;
-  for (const Facet& facet : reference.facets) {
-    Point3 newell{0, 0, 0};  // loops run opposite ways around holes, so their Newell vectors subtract
-    for (const auto& loop : facet.polygons) {
-      if (loop.size() < 3) continue;
-      const Point3& o = reference.vertices[loop[0]];
-      for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
-        const Point3 u = sub(reference.vertices[loop[i]], o), v = sub(reference.vertices[loop[i + 1]], o);
-        newell[0] += u[1] * v[2] - u[2] * v[1];
-        newell[1] += u[2] * v[0] - u[0] * v[2];
-        newell[2] += u[0] * v[1] - u[1] * v[0];
-      }
-    }
-    area += 0.5 * std::sqrt(newell[0] * newell[0] + newell[1] * newell[1] + newell[2] * newell[2]);
-  }
-  double volume = 0;
-  for (const auto& t : mesh.tets) {
-    const Point3 a = sub(mesh.points[t[1]], mesh.points[t[0]]), b = sub(mesh.points[t[2]], mesh.points[t[0]]);
-    const Point3 c = sub(mesh.points[t[3]], mesh.points[t[0]]);
-    volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-               a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
-  }
-  return volume > 0 ? relative_tolerance * bounding_box(reference).diagonal() * area / volume : 0.0;
-}
-
 int run_check(const CheckArgs& args) {
   const TetMesh mesh = read_tet_mesh(args.mesh);
   const bool cad_reference = !args.reference.empty() && has_cad_faces(args.reference);
@@ -94,18 +63,6 @@ int run_check(const CheckArgs& args) {
   if (!args.reference.empty() && !cad_reference) reference = load_input(args.reference, args.input_options);
   CheckOptions options;
   options.tolerance = args.tolerance;
-  const double merge_tolerance = args.input_options.coplanar_tolerance;
-  if (reference && merge_tolerance > 0) {
-    // The reference's merged facets are planar to merge_tolerance only: faces on them are that far off their plane.
-    options.tolerance = std::max(options.tolerance, merge_tolerance);
-    options.relative_volume_tolerance = std::max(options.relative_volume_tolerance,
-                                                 merged_facets_volume_tolerance(*reference, mesh, merge_tolerance));
-    if (!args.json) {
-      std::printf("reference:   facets merged within %.3g of the diagonal: distance tolerance %.3g of it, relative "
-                  "volume tolerance %.3g\n",
-                  merge_tolerance, options.tolerance, options.relative_volume_tolerance);
-    }
-  }
   options.regularity = args.no_regularity     ? RegularityCheck::Skip
                        : args.require_regular ? RegularityCheck::Require
                                               : RegularityCheck::Report;

@@ -7,7 +7,9 @@
 //     the face against the other's orthosphere, by the exact power test (mesh_check_regularity.cpp).
 //  4. With a reference PLC: every boundary face must lie on an input facet (its three vertices within tolerance of
 //     the facet's plane, its centroid inside the facet's region), the faces on each facet must cover its area,
-//     and the mesh volume must equal the volume the input encloses (mesh_check_reference.cpp). This part works
+//     and the mesh volume must equal the volume the input encloses (mesh_check_reference.cpp). A facet whose
+//     vertices are off its plane (flat only to validate_plc's tolerance) widens both by twice that distance, its
+//     "flatness": a face within 2 d of the plane lies on the facet, and the volume may differ by 2 d times the area. This part works
 //     relative to the input's bounding-box centre, with a distance tolerance of the model's size and position
 //     (mesh_check_frame.cpp), so that a model far from the origin checks as it does at the origin.
 // Facet candidates for a face are found through a uniform grid over the facets' bounding boxes.
@@ -313,11 +315,21 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
     const check::ReferenceVolume volume = check::compute_reference_volume(plc, facets);
     report.reference_volume = volume.volume;
     report.reference_volume_method = volume.method;
+    // A facet flat only to some distance d has no one plane: a mesher's plane for it may be any plane within d of its
+    // vertices, up to 2 d from the checker's. Its faces are accepted within 2 d of the plane, and it encloses the
+    // volume only to 2 d times its area.
+    double max_flatness = 0, unflat_volume = 0;
+    for (const FacetGeometry& g : facets) {
+      if (g.degenerate) continue;
+      max_flatness = std::max(max_flatness, 2 * g.flatness);
+      unflat_volume += 2 * g.flatness * g.area;
+    }
     if (std::isnan(volume.volume)) {
       report.volume_relative_error = volume.volume;
     } else {
       report.volume_relative_error = std::fabs(report.mesh_volume - volume.volume) / std::fabs(volume.volume);
-      if (!(report.volume_relative_error <= options.relative_volume_tolerance)) {
+      const double volume_tolerance = options.relative_volume_tolerance + unflat_volume / std::fabs(volume.volume);
+      if (!(report.volume_relative_error <= volume_tolerance)) {
         problems.add("mesh volume " + number(report.mesh_volume) + " differs from the input's " +
                      number(volume.volume) + " (relative error " + number(report.volume_relative_error) + ")");
       }
@@ -332,7 +344,7 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
     // Relative to the model's size, and at least a few ulps of where it lies (a unit cube at 1e15 has its
     // coordinates 0.125 apart).
     const double tolerance = options.tolerance * diagonal + frame.position_tolerance();
-    const FacetGrid grid(facets, tolerance);
+    const FacetGrid grid(facets, tolerance + max_flatness);
     std::vector<double> covered(facets.size(), 0);
     // The input facet a face lies on: its three vertices within tolerance of the plane, its centroid inside.
     const auto find_facet = [&](const std::array<Index, 3>& key, double& area) {
@@ -349,7 +361,7 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
         const FacetGeometry& g = facets[f];
         const auto distance = [&](const Point3& p) { return std::fabs(dot(g.normal, p) - g.offset); };
         const double d = std::max({distance(a), distance(b), distance(c)});
-        if (d > tolerance || !(d < best_distance)) continue;
+        if (d > tolerance + 2 * g.flatness || !(d < best_distance)) continue;
         if (g.contains(centroid)) best = f, best_distance = d;
       }
       return best;
@@ -401,7 +413,10 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
                                     : (covered[f] > 0 ? inf : 0);
       report.facet_area += coverage.area;
       report.max_facet_area_relative_error = std::max(report.max_facet_area_relative_error, coverage.relative_error);
-      if (!(coverage.relative_error <= options.relative_area_tolerance)) {
+      // A facet flat only to d has its area defined to about 2 d times its perimeter (the tilt of its loops).
+      const double unflat_area =
+          coverage.area > 0 ? 2 * facets[f].flatness * facets[f].perimeter / std::max(coverage.area, area_floor) : 0;
+      if (!(coverage.relative_error <= options.relative_area_tolerance + unflat_area)) {
         ++report.num_miscovered_facets;
         problems.add("facet " + std::to_string(f) + " (marker " + std::to_string(coverage.marker) + "): covered area " +
                      number(coverage.covered_area) + " vs area " + number(coverage.area) + " (relative error " +

@@ -17,6 +17,11 @@ using Point2 = std::array<double, 2>;
 struct FacetGeometry {
   Point3 normal{0, 0, 0};  // unit normal (Newell's method on the loop of largest area)
   double offset = 0;       // normal . x for every x on the plane
+  // Largest distance of a loop vertex from that plane: rounding (about 1e-16 D) for a planar facet, up to
+  // validate_plc's planarity tolerance for one that is flat only so (a user's polygon, facets merged with
+  // --coplanar-tolerance). A mesher's plane for such a facet may lie up to twice that from this one.
+  double flatness = 0;
+  double perimeter = 0;  // total length of the loops
   int drop_axis = 2;       // the dropped axis; 2D coordinates are (x[(k+1)%3], x[(k+2)%3])
   std::vector<std::vector<Index>> loops;   // polygon loops of >= 3 vertices
   std::vector<std::vector<Point2>> loops_2d;

@@ -111,6 +111,16 @@ FacetGeometry make_facet_geometry(const Plc& plc, const Facet& facet) {
     }
   }
   g.offset = sum / static_cast<double>(count);
+  for (const auto& loop : g.loops) {
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Point3& p = plc.vertices[loop[i]];
+      const Point3& q = plc.vertices[loop[(i + 1) % loop.size()]];
+      g.flatness = std::max(g.flatness, std::fabs(g.normal[0] * p[0] + g.normal[1] * p[1] + g.normal[2] * p[2] -
+                                                  g.offset));
+      g.perimeter += std::sqrt((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) +
+                               (q[2] - p[2]) * (q[2] - p[2]));
+    }
+  }
   g.drop_axis = 0;
   for (int k = 1; k < 3; ++k) {
     if (std::fabs(g.normal[k]) > std::fabs(g.normal[g.drop_axis])) g.drop_axis = k;

@@ -127,6 +127,25 @@ TEST(MeshCheck, FiveTetCubeConforms) {
   EXPECT_NEAR(r.max_radius_edge, std::sqrt(3.0) / 2.0, 1e-12);
 }
 
+TEST(MeshCheck, FacetsFlatOnlyToATolerancePassWithinIt) {
+  // Corner 7 raised by 1e-7 (D = sqrt 3): the three facets through it are flat to about 2.5e-8 only (validate_plc
+  // accepts them up to 1e-6 D, and --coplanar-tolerance makes such facets). A mesh on the same points lies on them
+  // within twice that, far beyond the default distance tolerance of 1e-9 D, and passes.
+  Plc plc = cube_plc();
+  plc.vertices[7][2] += 1e-7;
+  TetMesh mesh = kuhn_cube();
+  mesh.points = plc.vertices;
+  const CheckReport r = check_mesh(mesh, &plc);
+  EXPECT_TRUE(r.ok) << to_text(r);
+  EXPECT_EQ(r.num_faces_off_input, 0u);
+  EXPECT_EQ(r.num_miscovered_facets, 0u);
+  // The same mesh with corner 7 a further 1e-6 up is off those facets: the allowance is the facets' own flatness.
+  mesh.points[7][2] += 1e-6;
+  const CheckReport off = check_mesh(mesh, &plc);
+  EXPECT_FALSE(off.ok);
+  EXPECT_GT(off.num_faces_off_input, 0u);
+}
+
 TEST(MeshCheck, FlippedTetIsReported) {
   const Plc plc = cube_plc();
   TetMesh mesh = kuhn_cube();

@@ -31,7 +31,9 @@ struct CheckOptions {
   // bounding-box centre, so results do not depend on where the model lies.
   double tolerance = 1e-9;
   // Largest accepted relative error of the mesh volume against the reference volume, and of each facet's
-  // covered area against its area. Floating-point sums over millions of tetrahedra stay far below these.
+  // covered area against its area. Floating-point sums over millions of tetrahedra stay far below these. Facets
+  // whose vertices lie up to d off their plane (flat only to validate_plc's tolerance) add 2 d to `tolerance` for
+  // their own faces, 2 d times their area to the volume tolerance, and 2 d times their perimeter to their area's.
   double relative_volume_tolerance = 1e-8;
   double relative_area_tolerance = 1e-8;
   // At most this many problem lines are kept (the counts are always complete).
