@@ -11,6 +11,7 @@
 #include "qualmesh/plc_io.h"
 #if QUALMESH_WITH_CAD
 #include "cad_plugin_loader.h"
+#include "mesh_checks.h"
 #endif
 
 namespace qualmesh::cli {
@@ -113,7 +114,7 @@ void add_input_options(CLI::App& command, InputOptions& options) {
                   "planarity tolerance of validation). Needle triangles of flat faces that rounding bent a hair then "
                   "stop being sharp input angles; the mesh boundary lies within that distance of the input instead "
                   "of exactly on it (default 0: exactly coplanar facets only)")
-      ->check(CLI::Range(0.0, 1e-6));
+      ->check(coplanar_tolerance_check());
   command.add_option("--deflection", options.deflection,
                      "CAD inputs with --cad-surface tessellation: absolute chordal deflection of curved faces, in "
                      "model units (default: relative)");

@@ -123,11 +123,17 @@ const Range kRelativeDeflection{0, true, 1, true, "a fraction of the bounding-bo
 const Range kSewingTolerance{0, true, kInf, false, "model units; leave the option out for the automatic tolerance",
                              1e-150};
 
+const Range kCoplanarTolerance{0, false, 1e-6, false,
+                                "a fraction of the bounding-box diagonal, at most validation's planarity tolerance, "
+                                "so that every merged facet stays a valid planar facet"};
+
 void add_check(CLI::App& command, const std::string& name, const CLI::Validator& validator) {
   command.get_option(name)->check(validator);
 }
 
 }  // namespace
+
+CLI::Validator coplanar_tolerance_check() { return real_in(kCoplanarTolerance); }
 
 void add_mesh_option_checks(CLI::App& command) {
   add_check(command, "--radius-edge", real_in(kRadiusEdge));

@@ -33,6 +33,9 @@ namespace qualmesh::cli {
 // definitions stay as they are) and the output-path check to -o.
 void add_mesh_option_checks(CLI::App& command);
 
+// The range check of --coplanar-tolerance (every command that reads an input): a number in [0, 1e-6].
+CLI::Validator coplanar_tolerance_check();
+
 // Empty when `output` names a mesh format (mesh_format_from_path) in an existing directory, else what is wrong.
 std::string output_path_problem(const std::string& output);
 

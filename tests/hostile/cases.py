@@ -425,6 +425,15 @@ for value, kind in [("0", OUT_OF_RANGE), ("-1", OUT_OF_RANGE), ("nan", NAN), ("i
          (r" > 0 \(model units; leave the option out for the automatic tolerance\)" if kind == OUT_OF_RANGE else ""))
 case("ok-sewing-tolerance-cad", ["info", "{shared}/data/cad/part.step", "--sewing-tolerance", "1e-3"], 0, r"^$",
      tags=["needs:shared"], timeout=60)
+# --coplanar-tolerance, which the reader's note suggests, is range-checked in every command that reads an input.
+for command, value, kind in [("mesh", "2e-6", OUT_OF_RANGE), ("info", "-1", OUT_OF_RANGE), ("convert", "nan", NAN),
+                             ("mesh", "inf", NOT_FINITE), ("check", "abc", NOT_A_NUMBER)]:
+    argv = {"mesh": ["mesh", BOX, "-o", "{out}"], "info": ["info", BOX], "convert": ["convert", BOX, "{out}.poly"],
+            "check": ["check", "{in}/fuzz_region_attribute.node", "--ref", BOX]}[command]
+    case(f"opt--coplanar-tolerance-{command}-{_slug(value)}", argv + [f"--coplanar-tolerance={value}"], 2,
+         rf"^--coplanar-tolerance: '{re.escape(value)}' {kind}: expected a finite number in \[0, 1e-06\]" +
+         (r" \(a fraction of the bounding-box diagonal" if kind == OUT_OF_RANGE else ""))
+case("ok-coplanar-tolerance", ["mesh", BOX, "-o", "{out}", "--coplanar-tolerance", "1e-6"], 0, r"^$")
 # Fuzzing findings (tests/fuzz/regressions), each by its exact input: a region attribute beyond int (UB before).
 case("fuzz-tetgen-region-attribute-beyond-int", ["check", "{in}/fuzz_region_attribute.node"], 2,
      r"fuzz_region_attribute\.ele:\d+: error\[parse\]: the region attribute of tetrahedron \d+ \([0-9.e+]+\) is "
