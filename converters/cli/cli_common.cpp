@@ -11,8 +11,8 @@
 #include "qualmesh/plc_io.h"
 #if QUALMESH_WITH_CAD
 #include "cad_plugin_loader.h"
-#include "mesh_checks.h"
 #endif
+#include "mesh_checks.h"
 
 namespace qualmesh::cli {
 
