@@ -22,8 +22,6 @@
 // leaves the group unmerged.
 #include "qualmesh/facet_merge.h"
 
-#include "facet_triangulation.h"
-
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
@@ -36,6 +34,8 @@
 #include <tuple>
 #include <utility>
 #include <vector>
+
+#include "facet_triangulation.h"
 
 namespace qualmesh {
 
