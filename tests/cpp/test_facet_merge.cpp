@@ -243,8 +243,8 @@ TEST(FacetMerge, NearCoplanarGroupsStayWithinTheToleranceOfOnePlane) {
   EXPECT_GT(merged.facets.size(), 1u);
   EXPECT_LT(merged.facets.size(), plc.facets.size() / 4);
   for (const Facet& f : merged.facets) {
-    // Distance of every vertex from the plane through the facet's first vertex, normal of its worst-case fit: the
-    // strip's planes contain the y axis, so the plane through the facet's extreme x positions bounds the sag.
+    // A piece over x in [lo, hi] is flat to its sag, the largest gap between z = c x^2 and its chord there; a piece
+    // whose vertices lie within the tolerance of one plane has a sag of at most twice it.
     double lo = 1e300, hi = -1e300;
     for (const auto& loop : f.polygons)
       for (Index v : loop) lo = std::min(lo, plc.vertices[v][0]), hi = std::max(hi, plc.vertices[v][0]);
