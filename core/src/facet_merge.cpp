@@ -11,8 +11,9 @@
 // Tolerance (merge_coplanar_facets' relative_tolerance > 0). Facets are grown from a seed, in index order: a facet
 // joins the seed's group across an edge of two uses when all its vertices lie within the tolerance of the seed's
 // plane (so the group cannot drift away from one plane along a gently curved strip) and the sides agree, decided in
-// the projection along the seed normal's largest component. The merged facet is kept only when its vertices are
-// within the tolerance of the plane plc_validate measures (compute_facet_frame), else the group stays unmerged.
+// the projection along the seed normal's largest component; plane and projection are compute_facet_frame's, as
+// validate_plc measures them. The merged facet is kept only when its vertices are within the tolerance of its own
+// such plane, else the group stays unmerged.
 // With a zero tolerance the groups are exactly those of the exact rule above.
 //
 // Topology. The facets of a group are re-oriented like the group's first facet; directed edges that occur both ways
@@ -30,7 +31,7 @@
 #include <cstdint>
 #include <map>
 #include <numeric>
-#include <queue>
+#include <optional>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -275,15 +276,6 @@ bool within_plane(const Plc& plc, const Facet& facet, double tolerance) {
   return true;
 }
 
-// The projection that drops the largest component of the normal of triangle abc (one-to-one on its plane and on
-// planes near it).
-Projection dominant_projection(const P3& a, const P3& b, const P3& c) {
-  const Kernel::Vector_3 n = CGAL::cross_product(b - a, c - a);
-  const double x = std::abs(n.x()), y = std::abs(n.y()), z = std::abs(n.z());
-  if (z >= x && z >= y) return Projection::DropZ;
-  return x >= y ? Projection::DropX : Projection::DropY;
-}
-
 // Groups of facets within `tolerance` (model units, > 0) of their seed's plane, grown across the edges in `pairs`
 // (two facet uses each); see the file comment. `shapes` of the members get the seed's projection and their
 // orientation in it, as merge_group reads them.
@@ -299,40 +291,36 @@ void grow_near_coplanar_groups(const Plc& plc, const std::vector<std::pair<EdgeU
   for (std::size_t seed = 0; seed < n; ++seed) {
     if (assigned[seed] || !shapes[seed].mergeable) continue;
     assigned[seed] = 1;
-    const FacetShape& s = shapes[seed];
-    const P3 a = to_cgal(plc.vertices[s.plane[0]]), b = to_cgal(plc.vertices[s.plane[1]]);
-    const P3 c = to_cgal(plc.vertices[s.plane[2]]);
-    Kernel::Vector_3 normal = CGAL::cross_product(b - a, c - a);
-    normal = normal / std::sqrt(normal.squared_length());
-    const Projection projection = dominant_projection(a, b, c);
+    // The seed's plane and projection as validate_plc sees them (compute_facet_frame).
+    const std::optional<detail::FacetFrame> frame = detail::compute_facet_frame(plc.vertices, plc.facets[seed]);
+    if (!frame) continue;
+    const Projection projection = frame->drop_axis == 0   ? Projection::DropX
+                                  : frame->drop_axis == 1 ? Projection::DropY
+                                                          : Projection::DropZ;
     const auto orientation = [&](std::size_t f) {
       return loop_orientation(plc.facets[f].polygons[0], plc.vertices, projection);
     };
     const auto near_plane = [&](std::size_t f) {
       for (Index v : plc.facets[f].polygons[0])
-        if (!(std::abs((to_cgal(plc.vertices[v]) - a) * normal) <= tolerance)) return false;
+        if (!(std::abs(detail::signed_distance(*frame, plc.vertices[v])) <= tolerance)) return false;
       return true;
     };
-    std::vector<Index> members{static_cast<Index>(seed)};
-    std::queue<std::pair<Index, int>> queue;  // member, its orientation in `projection`
-    queue.push({static_cast<Index>(seed), orientation(seed)});
-    while (!queue.empty()) {
-      const auto [f, f_sign] = queue.front();
-      queue.pop();
+    std::vector<std::pair<Index, int>> members{{static_cast<Index>(seed), orientation(seed)}};  // and orientation
+    for (std::size_t next = 0; next < members.size(); ++next) {  // breadth first: `members` is the queue
+      const auto [f, f_sign] = members[next];
       for (const auto& [mine, other] : adjacent[f]) {
         const Index g = other.facet;
         if (assigned[g] || !shapes[g].mergeable || !near_plane(g)) continue;
         const int g_sign = orientation(g);
         if (g_sign == 0 || f_sign * mine.direction != -(g_sign * other.direction)) continue;
         assigned[g] = 1;
-        members.push_back(g);
-        queue.push({g, g_sign});
+        members.push_back({g, g_sign});
       }
     }
     if (members.size() < 2) continue;
-    for (Index f : members) {
+    for (const auto& [f, sign] : members) {
       shapes[f].projection = projection;
-      shapes[f].orientation = orientation(f);
+      shapes[f].orientation = sign;
       sets.unite(static_cast<Index>(seed), f);
     }
   }

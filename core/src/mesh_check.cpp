@@ -8,10 +8,11 @@
 //  4. With a reference PLC: every boundary face must lie on an input facet (its three vertices within tolerance of
 //     the facet's plane, its centroid inside the facet's region), the faces on each facet must cover its area,
 //     and the mesh volume must equal the volume the input encloses (mesh_check_reference.cpp). A facet whose
-//     vertices are off its plane (flat only to validate_plc's tolerance) widens both by twice that distance, its
-//     "flatness": a face within 2 d of the plane lies on the facet, and the volume may differ by 2 d times the area. This part works
-//     relative to the input's bounding-box centre, with a distance tolerance of the model's size and position
-//     (mesh_check_frame.cpp), so that a model far from the origin checks as it does at the origin.
+//     vertices lie up to d off its plane (flat only to validate_plc's tolerance; d is its "flatness") widens these
+//     tests by 2 d: a face within 2 d of the plane lies on it; volume and area may differ by 2 d times its area and
+//     perimeter. This part works relative to the input's bounding-box centre, with a distance tolerance of the
+//     model's size and position (mesh_check_frame.cpp), so that a model far from the origin checks as it does at
+//     the origin.
 // Facet candidates for a face are found through a uniform grid over the facets' bounding boxes.
 #include "qualmesh/mesh_check.h"
 
@@ -318,11 +319,12 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
     // A facet flat only to some distance d has no one plane: a mesher's plane for it may be any plane within d of its
     // vertices, up to 2 d from the checker's. Its faces are accepted within 2 d of the plane, and it encloses the
     // volume only to 2 d times its area.
-    double max_flatness = 0, unflat_volume = 0;
+    const auto allowance = [](const FacetGeometry& g) { return 2 * g.flatness; };
+    double max_allowance = 0, unflat_volume = 0;
     for (const FacetGeometry& g : facets) {
       if (g.degenerate) continue;
-      max_flatness = std::max(max_flatness, 2 * g.flatness);
-      unflat_volume += 2 * g.flatness * g.area;
+      max_allowance = std::max(max_allowance, allowance(g));
+      unflat_volume += allowance(g) * g.area;
     }
     if (std::isnan(volume.volume)) {
       report.volume_relative_error = volume.volume;
@@ -344,7 +346,7 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
     // Relative to the model's size, and at least a few ulps of where it lies (a unit cube at 1e15 has its
     // coordinates 0.125 apart).
     const double tolerance = options.tolerance * diagonal + frame.position_tolerance();
-    const FacetGrid grid(facets, tolerance + max_flatness);
+    const FacetGrid grid(facets, tolerance + max_allowance);
     std::vector<double> covered(facets.size(), 0);
     // The input facet a face lies on: its three vertices within tolerance of the plane, its centroid inside.
     const auto find_facet = [&](const std::array<Index, 3>& key, double& area) {
@@ -361,7 +363,7 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
         const FacetGeometry& g = facets[f];
         const auto distance = [&](const Point3& p) { return std::fabs(dot(g.normal, p) - g.offset); };
         const double d = std::max({distance(a), distance(b), distance(c)});
-        if (d > tolerance + 2 * g.flatness || !(d < best_distance)) continue;
+        if (d > tolerance + allowance(g) || !(d < best_distance)) continue;
         if (g.contains(centroid)) best = f, best_distance = d;
       }
       return best;
@@ -415,7 +417,7 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
       report.max_facet_area_relative_error = std::max(report.max_facet_area_relative_error, coverage.relative_error);
       // A facet flat only to d has its area defined to about 2 d times its perimeter (the tilt of its loops).
       const double unflat_area =
-          coverage.area > 0 ? 2 * facets[f].flatness * facets[f].perimeter / std::max(coverage.area, area_floor) : 0;
+          coverage.area > 0 ? allowance(facets[f]) * facets[f].perimeter / std::max(coverage.area, area_floor) : 0;
       if (!(coverage.relative_error <= options.relative_area_tolerance + unflat_area)) {
         ++report.num_miscovered_facets;
         problems.add("facet " + std::to_string(f) + " (marker " + std::to_string(coverage.marker) + "): covered area " +
