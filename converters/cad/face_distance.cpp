@@ -2,11 +2,26 @@
 // given point to the CAD face it claims to lie on, measured by OpenCASCADE (BRepExtrema, which honours the face's
 // trimming). FreeCAD's FEM finds a constraint's nodes the same way, so a boundary node farther from its face than
 // the face's tolerance plus the deflection would silently lose its load there (shared/docs/FREECAD.md).
+//
+// BRepExtrema misjudges points inside a periodic face that winds more than once around its axis: bottle.brep's
+// thread, Face6, is a band on a cylinder over u in [0.12, 12.45]. Nodes of that band that lie on the cylinder to
+// 4e-9, between its two edges, were reported 0.0086-0.063 from it (the distance to the nearer edge), as if outside.
+// So where BRepExtrema's answer is not (nearly) zero, a second measure projects the point onto the face's surface
+// (GeomAPI_ProjectPointOnSurf) and classifies that foot in the face's parameter plane at every period shift inside
+// its UV bounds (BRepClass_FaceClassifier); a foot inside the face gives its distance. The result is the smaller of
+// the two, each a distance to a point of the trimmed face.
 #include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepClass_FaceClassifier.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom_Surface.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 
 #include <algorithm>
@@ -18,6 +33,45 @@
 #include "qualmesh/error.h"
 
 namespace qualmesh {
+
+namespace {
+
+// The distance from p to the nearest foot of p on the face's surface that lies inside the trimmed face, trying
+// every period shift of the foot's parameters that stays within the face's UV bounds; +inf when there is none.
+double distance_through_surface(const TopoDS_Face& face, const gp_Pnt& p) {
+  const Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
+  if (surface.IsNull()) return HUGE_VAL;
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
+  GeomAPI_ProjectPointOnSurf projection(p, surface);
+  if (!projection.IsDone()) return HUGE_VAL;
+  const double tolerance = BRep_Tool::Tolerance(face);
+  const double u_period = surface->IsUPeriodic() ? surface->UPeriod() : 0;
+  const double v_period = surface->IsVPeriodic() ? surface->VPeriod() : 0;
+  double best = HUGE_VAL;
+  for (int i = 1; i <= projection.NbPoints(); ++i) {
+    double u, v;
+    projection.Parameters(i, u, v);
+    const double distance = projection.Distance(i);
+    if (!(distance < best)) continue;
+    // Shifts that bring the foot into [u0, u1] x [v0, v1] (a face winds at most a few times).
+    for (int ku = -4; ku <= 4; ++ku) {
+      if (ku != 0 && u_period <= 0) continue;
+      const double uu = u + ku * u_period;
+      if (uu < u0 - 1e-9 || uu > u1 + 1e-9) continue;
+      for (int kv = -4; kv <= 4; ++kv) {
+        if (kv != 0 && v_period <= 0) continue;
+        const double vv = v + kv * v_period;
+        if (vv < v0 - 1e-9 || vv > v1 + 1e-9) continue;
+        const BRepClass_FaceClassifier classifier(face, gp_Pnt2d(uu, vv), tolerance);
+        if (classifier.State() == TopAbs_IN || classifier.State() == TopAbs_ON) best = std::min(best, distance);
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
 
 std::vector<double> distances_to_cad_faces(const std::string& path, const std::vector<Point3>& points,
                                            const std::vector<int>& face_numbers, const CadOptions& options) {
@@ -44,6 +98,8 @@ std::vector<double> distances_to_cad_faces(const std::string& path, const std::v
       const Point3& p = points[i];
       it->second.LoadS2(BRepBuilderAPI_MakeVertex(gp_Pnt(p[0], p[1], p[2])).Vertex());
       if (it->second.Perform() && it->second.IsDone()) result[i] = it->second.Value();
+      if (!(result[i] <= BRep_Tool::Tolerance(TopoDS::Face(faces(f)))))
+        result[i] = std::min(result[i], distance_through_surface(TopoDS::Face(faces(f)), gp_Pnt(p[0], p[1], p[2])));
     }
   } catch (const Standard_Failure& failure) {
     throw InputError(ErrorCode::Parse, std::string("OpenCASCADE failed measuring distances: ") +

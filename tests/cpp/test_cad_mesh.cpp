@@ -247,6 +247,32 @@ INSTANTIATE_TEST_SUITE_P(SharedData, ScadMeshesNoPump,
                                            "example024.scad"),
                          file_test_name);
 
+// The checker's distance to a trimmed face (distances_to_cad_faces) on a face that winds twice around its axis:
+// bottle.brep's thread, Face6, is a band on the cylinder r = 7.875 about the z axis over u in [0.12, 12.45]. These
+// points were nodes of a mesh of it; FreeCAD measured them on the cylinder to 4e-9, and 0.0189 / 0.0203,
+// 0.0161 / 0.0175 and 0.0086 / 0.0088 from the band's two edges, so between them. BRepExtrema alone reported the
+// first of those distances, as if they were outside the band. A point 0.01 off the cylinder, radially, is 0.01
+// away; a point far from the band along the cylinder is reported at its distance from the band, not from the
+// cylinder.
+TEST(CadChecker, MeasuresPointsOnAFaceThatWindsTwiceAsOnIt) {
+  const std::string path = test::shared_path("data/cad/bottle.brep");
+  QM_REQUIRE_FILE(path);
+  const std::vector<Point3> on_band = {
+      {7.16857876, -3.25992386, 53.6853582}, {7.41032721, -2.66508456, 53.6988619}, {7.74500936, -1.42494036, 53.7224418}};
+  std::vector<Point3> points = on_band;
+  for (const Point3& p : on_band) {  // 0.01 outward, radially
+    const double r = std::hypot(p[0], p[1]);
+    points.push_back({p[0] * (r + 0.01) / r, p[1] * (r + 0.01) / r, p[2]});
+  }
+  points.push_back({7.875, 0, 45.0});  // on the cylinder, 6 below the band's lowest point (z 51.27)
+  const std::vector<double> d = distances_to_cad_faces(path, points, std::vector<int>(points.size(), 6));
+  for (std::size_t i = 0; i < on_band.size(); ++i) {
+    EXPECT_LT(d[i], 1e-6) << "point " << i;
+    EXPECT_NEAR(d[on_band.size() + i], 0.01, 1e-6) << "point " << i << " moved off";
+  }
+  EXPECT_GT(d.back(), 6.0);
+}
+
 // The CAD projector (project_onto_cad, cad_fit.cpp) starts Newton's method from a projection it made nearby and
 // keeps the answer only where Newton lands on the point itself. Elsewhere Newton may stop at a local extremum
 // (bottle.brep's B-spline faces: 0.006 and 1.25 from the point, where the surface was 1e-4 away), and OpenCASCADE's
