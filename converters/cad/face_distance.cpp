@@ -6,10 +6,11 @@
 // BRepExtrema misjudges points inside a periodic face that winds more than once around its axis: bottle.brep's
 // thread, Face6, is a band on a cylinder over u in [0.12, 12.45]. Nodes of that band that lie on the cylinder to
 // 4e-9, between its two edges, were reported 0.0086-0.063 from it (the distance to the nearer edge), as if outside.
-// So where BRepExtrema's answer is not (nearly) zero, a second measure projects the point onto the face's surface
+// So where BRepExtrema's answer exceeds the face's tolerance, a second measure projects the point onto its surface
 // (GeomAPI_ProjectPointOnSurf) and classifies that foot in the face's parameter plane at every period shift inside
 // its UV bounds (BRepClass_FaceClassifier); a foot inside the face gives its distance. The result is the smaller of
-// the two, each a distance to a point of the trimmed face.
+// the two, each a distance to a point of the trimmed face, so it is never below the true distance.
+// FreeCAD itself (BRepExtrema) would still miss such nodes for a constraint on that face, as it would Gmsh's.
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepClass_FaceClassifier.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
