@@ -26,9 +26,11 @@
 #include <TopoDS_Shape.hxx>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <vector>
 
 #include "cad_private.h"
 #include "qualmesh/error.h"
@@ -37,37 +39,36 @@ namespace qualmesh {
 
 namespace {
 
+// The values x + k period (k an integer; k = 0 only when period is 0) within [lo, hi], up to rounding.
+std::vector<double> shifts_within(double x, double lo, double hi, double period) {
+  const double slack = 1e-9;
+  if (!(period > 0)) return x >= lo - slack && x <= hi + slack ? std::vector<double>{x} : std::vector<double>{};
+  std::vector<double> out;
+  for (double k = std::ceil((lo - slack - x) / period); x + k * period <= hi + slack; ++k) out.push_back(x + k * period);
+  return out;
+}
+
 // The distance from p to the nearest foot of p on the face's surface that lies inside the trimmed face, trying
 // every period shift of the foot's parameters that stays within the face's UV bounds; +inf when there is none.
 double distance_through_surface(const TopoDS_Face& face, const gp_Pnt& p) {
   const Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
   if (surface.IsNull()) return HUGE_VAL;
-  double u0, u1, v0, v1;
-  BRepTools::UVBounds(face, u0, u1, v0, v1);
   GeomAPI_ProjectPointOnSurf projection(p, surface);
   if (!projection.IsDone()) return HUGE_VAL;
-  const double tolerance = BRep_Tool::Tolerance(face);
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
   const double u_period = surface->IsUPeriodic() ? surface->UPeriod() : 0;
   const double v_period = surface->IsVPeriodic() ? surface->VPeriod() : 0;
   double best = HUGE_VAL;
   for (int i = 1; i <= projection.NbPoints(); ++i) {
+    if (!(projection.Distance(i) < best)) continue;
     double u, v;
     projection.Parameters(i, u, v);
-    const double distance = projection.Distance(i);
-    if (!(distance < best)) continue;
-    // Shifts that bring the foot into [u0, u1] x [v0, v1] (a face winds at most a few times).
-    for (int ku = -4; ku <= 4; ++ku) {
-      if (ku != 0 && u_period <= 0) continue;
-      const double uu = u + ku * u_period;
-      if (uu < u0 - 1e-9 || uu > u1 + 1e-9) continue;
-      for (int kv = -4; kv <= 4; ++kv) {
-        if (kv != 0 && v_period <= 0) continue;
-        const double vv = v + kv * v_period;
-        if (vv < v0 - 1e-9 || vv > v1 + 1e-9) continue;
-        const BRepClass_FaceClassifier classifier(face, gp_Pnt2d(uu, vv), tolerance);
-        if (classifier.State() == TopAbs_IN || classifier.State() == TopAbs_ON) best = std::min(best, distance);
+    for (const double uu : shifts_within(u, u0, u1, u_period))
+      for (const double vv : shifts_within(v, v0, v1, v_period)) {
+        const TopAbs_State state = BRepClass_FaceClassifier(face, gp_Pnt2d(uu, vv), BRep_Tool::Tolerance(face)).State();
+        if (state == TopAbs_IN || state == TopAbs_ON) best = std::min(best, projection.Distance(i));
       }
-    }
   }
   return best;
 }
@@ -96,11 +97,11 @@ std::vector<double> distances_to_cad_faces(const std::string& path, const std::v
         it = by_face.try_emplace(f).first;
         it->second.LoadS1(faces(f));
       }
-      const Point3& p = points[i];
-      it->second.LoadS2(BRepBuilderAPI_MakeVertex(gp_Pnt(p[0], p[1], p[2])).Vertex());
+      const gp_Pnt p(points[i][0], points[i][1], points[i][2]);
+      it->second.LoadS2(BRepBuilderAPI_MakeVertex(p).Vertex());
       if (it->second.Perform() && it->second.IsDone()) result[i] = it->second.Value();
-      if (!(result[i] <= BRep_Tool::Tolerance(TopoDS::Face(faces(f)))))
-        result[i] = std::min(result[i], distance_through_surface(TopoDS::Face(faces(f)), gp_Pnt(p[0], p[1], p[2])));
+      const TopoDS_Face& face = TopoDS::Face(faces(f));
+      if (!(result[i] <= BRep_Tool::Tolerance(face))) result[i] = std::min(result[i], distance_through_surface(face, p));
     }
   } catch (const Standard_Failure& failure) {
     throw InputError(ErrorCode::Parse, std::string("OpenCASCADE failed measuring distances: ") +
