@@ -57,6 +57,7 @@ double distance_through_surface(const TopoDS_Face& face, const gp_Pnt& p) {
   if (!projection.IsDone()) return HUGE_VAL;
   double u0, u1, v0, v1;
   BRepTools::UVBounds(face, u0, u1, v0, v1);
+  const double tolerance = BRep_Tool::Tolerance(face);
   const double u_period = surface->IsUPeriodic() ? surface->UPeriod() : 0;
   const double v_period = surface->IsVPeriodic() ? surface->VPeriod() : 0;
   double best = HUGE_VAL;
@@ -66,7 +67,7 @@ double distance_through_surface(const TopoDS_Face& face, const gp_Pnt& p) {
     projection.Parameters(i, u, v);
     for (const double uu : shifts_within(u, u0, u1, u_period))
       for (const double vv : shifts_within(v, v0, v1, v_period)) {
-        const TopAbs_State state = BRepClass_FaceClassifier(face, gp_Pnt2d(uu, vv), BRep_Tool::Tolerance(face)).State();
+        const TopAbs_State state = BRepClass_FaceClassifier(face, gp_Pnt2d(uu, vv), tolerance).State();
         if (state == TopAbs_IN || state == TopAbs_ON) best = std::min(best, projection.Distance(i));
       }
   }
