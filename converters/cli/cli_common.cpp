@@ -79,6 +79,8 @@ CLI::Validator finite_above(double lo, bool closed, const std::string& what) {
       "");
 }
 
+}  // namespace
+
 CadOptions cad_options_of(const InputOptions& options) {
   CadOptions cad_options;
   cad_options.deflection = options.deflection;
@@ -91,14 +93,6 @@ CadOptions cad_options_of(const InputOptions& options) {
   for (const std::string& text : options.local_sizes) cad_options.local_sizes.push_back(parse_local_size(text));
   cad_options.sewing_tolerance = options.sewing_tolerance;
   return cad_options;
-}
-
-}  // namespace
-
-double cad_min_split_length(const InputOptions& options, double size) {
-  double smallest = options.min_size > 0 ? options.min_size : kDefaultMinSizeFactor * size;
-  for (const std::string& text : options.local_sizes) smallest = std::min(smallest, parse_local_size(text).size);
-  return smallest > 0 ? 0.5 * smallest : 0;
 }
 
 void add_size_options(CLI::App& command, InputOptions& options);  // below

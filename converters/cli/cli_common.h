@@ -47,9 +47,8 @@ struct InputOptions {
 };
 void add_input_options(CLI::App& command, InputOptions& options);
 
-// The engine's split floor (MeshOptions::min_split_length) for a CAD input meshed at target size `size`: half the
-// smallest size asked for (--min-size, or its default a 30th of the size, and any smaller --local-size).
-double cad_min_split_length(const InputOptions& options, double size);
+// The CAD front end's options as the input options give them (--size, --min-size, --local-size, ...).
+CadOptions cad_options_of(const InputOptions& options);
 
 // Reads any input model the CLI accepts (PLC formats; CAD and OpenSCAD formats when built with the CAD front end)
 // into a Plc. When `notes` is given, lines describing the source (CAD solids, faces, edges, healing) are appended;

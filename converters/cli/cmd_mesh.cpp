@@ -108,7 +108,8 @@ int run_mesh(MeshArgs& args) {
     args.options.encroaching = MeshOptions::Encroaching::Steiner;
   // A CAD surface has nothing finer than the smallest size asked for: encroachment splits stop at half of it
   // (MeshOptions::min_split_length), so that a cusp of the model does not draw refinement down to rounding.
-  if (has_cad_faces(args.input) && size > 0) args.options.min_split_length = cad_min_split_length(args.input_options, size);
+  if (has_cad_faces(args.input) && size > 0)
+    args.options.min_split_length = cad_min_split_length(cad_options_of(args.input_options), size);
   args.options.project_to_boundary = cad_projector(args.input, args.input_options);  // curved CAD faces and edges
   if (!check_mesh_input(plc, args.input, args.options, args.verbose)) return kExitBadInput;  // as `info` validates
   if (!check_size_estimate(plc, args.input, args.options, args.limits, args.verbose)) return kExitResource;  // mesh_limits.h

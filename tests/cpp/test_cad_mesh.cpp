@@ -56,10 +56,6 @@ MeshOptions cad_defaults() {
   return options;
 }
 
-// The split floor `qualmesh mesh` gives a CAD input meshed at `size` with no --min-size (cli_common.cpp
-// cad_min_split_length): half of the default smallest size.
-double cli_min_split_length(double size) { return 0.5 * kDefaultMinSizeFactor * size; }
-
 // `stats` (may be null) gets the run's figures. The surface's target edge length is the engine's too, as
 // `qualmesh mesh` makes it, unless `options` has one. With cli_split_floor, encroachment splits stop at the CLI's
 // floor for that length.
@@ -70,7 +66,7 @@ void expect_mesh_matches_cad(const std::string& file, MeshOptions options, MeshS
   const CadModel model = read_cad(path, cad_options);
   const CadSummary& summary = model.summary;
   if (!(options.target_edge_length > 0)) options.target_edge_length = summary.size_used;
-  if (cli_split_floor) options.min_split_length = cli_min_split_length(options.target_edge_length);
+  if (cli_split_floor) options.min_split_length = cad_min_split_length(cad_options, options.target_edge_length);
   const MeshResult result = mesh_plc(model.plc, options);
   if (stats) *stats = result.stats;
   ASSERT_EQ(result.status, MeshStatus::Ok);
@@ -177,7 +173,7 @@ TEST(CadMeshes, Cube1000AtHalfItsDefaultSizeHasNoFlatCellOutsideTheBoundary) {
   cad.size = 27.95;
   MeshOptions options = cad_defaults();
   // As `qualmesh mesh` makes them (cmd_mesh.cpp): the split floor, and boundary points onto the CAD surface.
-  options.min_split_length = cli_min_split_length(cad.size);
+  options.min_split_length = cad_min_split_length(cad, cad.size);
   const std::string path = test::shared_path("data/cad/cube1000.igs");
   options.project_to_boundary = [path, cad](int edge, int face, Point3& p) {
     return project_onto_cad(path, cad, edge, face, p);

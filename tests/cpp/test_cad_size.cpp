@@ -8,7 +8,8 @@
 //    grows by 4 to 12 times;
 //  - a local size refines its face; a local size on a face that does not exist is refused by name;
 //  - the narrow-face rule refines a strip but not a wedge (a three-sided face: its narrowness is a corner);
-//  - the same input gives the same PLC, bit for bit.
+//  - the same input gives the same PLC, bit for bit;
+//  - the volume mesher's split floor is half the smallest size asked for.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -170,6 +171,18 @@ TEST(SizedSurface, HalvingTheSizeMultipliesTheCylinderTets) {
     }
     previous = result.mesh.tets.size();
   }
+}
+
+// The volume mesher's split floor for a CAD model (cad_import.h cad_min_split_length, which `qualmesh mesh` and the
+// CAD mesh tests both call): half the smallest size asked for.
+TEST(SizedSurface, SplitFloorIsHalfTheSmallestSizeAskedFor) {
+  CadOptions options;
+  EXPECT_DOUBLE_EQ(cad_min_split_length(options, 30), 0.5);  // default min size: a 30th of the size
+  EXPECT_EQ(cad_min_split_length(options, 0), 0);             // no size: no floor
+  options.min_size = 2;
+  EXPECT_DOUBLE_EQ(cad_min_split_length(options, 30), 1);
+  options.local_sizes = {{CadLocalSize::Kind::Edge, 5, 3}, {CadLocalSize::Kind::Face, 2, 0.4}};
+  EXPECT_DOUBLE_EQ(cad_min_split_length(options, 30), 0.2);  // a local size below --min-size wins
 }
 
 }  // namespace

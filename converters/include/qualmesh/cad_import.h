@@ -81,6 +81,16 @@ struct CadOptions {
   std::string openscad_command = "openscad";
 };
 
+// The volume mesher's split floor (MeshOptions::min_split_length) for a CAD model meshed at target size `size`:
+// half the smallest size asked for (options.min_size, or its default kDefaultMinSizeFactor * size, and any smaller
+// local size), so that a cusp of the model does not draw Rules 1-2 down to rounding; 0 when `size` is not positive.
+// `qualmesh mesh` sets it for every CAD input (cmd_mesh.cpp), and the tests mesh as the CLI does through it.
+inline double cad_min_split_length(const CadOptions& options, double size) {
+  double smallest = options.min_size > 0 ? options.min_size : kDefaultMinSizeFactor * size;
+  for (const CadLocalSize& local : options.local_sizes) smallest = smallest < local.size ? smallest : local.size;
+  return smallest > 0 ? 0.5 * smallest : 0;
+}
+
 struct CadSummary {
   std::size_t num_solids = 0;    // solids of the healed shape = regions of the PLC
   std::size_t num_faces = 0;     // CAD faces = distinct facet markers of the PLC
