@@ -10,6 +10,7 @@ OpenCASCADE's volume of the solids (read from `qualmesh info`). A mesh file with
 ("N (no tets)", no ratios). Not a test: timings are noisy, compare within one run only.
 
 Usage: bench/bench_cad_gmsh.py [--qualmesh build/converters/qualmesh] [--timeout 600] [--curvature 12] [MODEL ...]
+A MODEL is a path, or the name of a file in ../shared/data/cad; with none, every STEP, IGES and BREP file there.
 """
 import argparse
 import json
@@ -66,6 +67,16 @@ def row(report, seconds, ok, cad_volume):
             fmt(seconds, ".2f"), fmt(error, ".2e")]
 
 
+def resolve_model(name):
+    """A model given on the command line: a path, or a file name in ../shared/data/cad."""
+    path = Path(name)
+    if not path.exists() and (CAD / name).exists():
+        path = CAD / name
+    if not path.exists():
+        sys.exit(f"{name}: no such file (neither a path nor a file of {CAD})")
+    return path.resolve()
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--qualmesh", default=str(ROOT / "build" / "converters" / "qualmesh"))
@@ -76,7 +87,7 @@ def main():
     qualmesh = str(Path(args.qualmesh).resolve())
     if shutil.which("gmsh") is None:
         sys.exit("gmsh is not installed (apt-get install gmsh)")
-    models = [Path(m).resolve() for m in args.models] or sorted(
+    models = [resolve_model(m) for m in args.models] or sorted(
         p for p in CAD.iterdir() if p.suffix.lower() in (".step", ".stp", ".igs", ".iges", ".brep"))
 
     head = ["nodes", "tets", "min dih", "<10", "<15", "wall s", "vol err"]
