@@ -12,7 +12,8 @@
 //   - the same input gives the same mesh twice in one process, under either encroachment rule;
 //   - re-refining a refined mesh adds nothing (CGAL Mesh_3's test_meshing_utilities property);
 //   - boundary points projected onto a curved surface (MeshOptions::project_to_boundary) land on it;
-//   - the split floor keeps small encroached elements, and splits below it past a budget stop a projected run.
+//   - the split floor keeps small encroached elements, and splits below it past a budget stop a projected run; it is
+//     the user's or the rounding floor, whichever is larger.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -340,6 +341,33 @@ TEST(Levels, ParamsDerivedOnceFromTheOptions) {
   options.encroaching = MeshOptions::Encroaching::Steiner;
   EXPECT_FALSE(d::RefineParams::from(options).encroachment.paper());
   EXPECT_TRUE(d::RefineParams::from(options).encroachment.walks_to_centres());
+}
+
+// The split floor of Rules 1-2 (refine_params.h): the user's MeshOptions::min_split_length (relaxed rule only),
+// raised to the rounding floor kRoundingSplitFloor x the input's diagonal under either rule. The user's value stays
+// apart, since the relaxed rule's conflict-zone budget applies only where the user gave no floor.
+TEST(Levels, SplitFloorIsTheUsersOrTheRoundingFloor) {
+  MeshOptions options;
+  options.encroaching = MeshOptions::Encroaching::Steiner;
+  d::RefineParams p = d::RefineParams::from(options);
+  EXPECT_EQ(p.sq_split_floor, 0);
+  p.set_rounding_floor(1000);
+  EXPECT_DOUBLE_EQ(p.sq_split_floor, 1e-12);  // (1e-9 x 1000)^2
+  EXPECT_EQ(p.sq_min_split, 0);
+  EXPECT_TRUE(p.subsegment_below_floor(3.9e-12));  // a subsegment shorter than twice the floor
+  EXPECT_FALSE(p.subsegment_below_floor(4.1e-12));
+  EXPECT_TRUE(p.subfacet_below_floor(0.9e-12));
+  EXPECT_FALSE(p.subfacet_below_floor(1.1e-12));
+  options.min_split_length = 0.5;  // a larger floor of the user's stays
+  p = d::RefineParams::from(options);
+  p.set_rounding_floor(1000);
+  EXPECT_DOUBLE_EQ(p.sq_split_floor, 0.25);
+  EXPECT_DOUBLE_EQ(p.sq_min_split, 0.25);
+  options.encroaching = MeshOptions::Encroaching::All;  // the paper's rule ignores the user's floor, not rounding's
+  p = d::RefineParams::from(options);
+  EXPECT_EQ(p.sq_split_floor, 0);
+  p.set_rounding_floor(1000);
+  EXPECT_DOUBLE_EQ(p.sq_split_floor, 1e-12);
 }
 
 // Determinism (house style, principle 7): the same input meshed twice in one process, with another input meshed in

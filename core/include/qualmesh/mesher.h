@@ -50,7 +50,10 @@ struct MeshOptions {
   // surface has them) encroachment splitting otherwise runs down towards rounding (1.8e-13 edges in its paper's-rule
   // mesh, an element ccx refused); on wrenchnut.stp at its default size it saves a quarter of the nodes. A missing
   // subsegment or subfacet is split whatever its size, so conformity is kept; the tetrahedra around a floored one
-  // may stay above the radius-edge bound (they touch an acute input angle).
+  // may stay above the radius-edge bound (they touch an acute input angle). Whatever this says, and under either
+  // rule, the engine keeps a rounding floor of 1e-9 of the input's bounding-box diagonal (refine_params.h
+  // kRoundingSplitFloor): below it a segment's vertices no longer lie on one line in doubles, and a facet's 2D
+  // triangulation folded (bottle.brep's sized surface without a floor crashed in CGAL's flips).
   double min_split_length = 0;
   // Largest volume allowed for a tetrahedron inside the domain, in model units cubed. 0 = no limit. Region seeds
   // (RegionSeed::max_volume) may lower it per region.
@@ -69,9 +72,9 @@ struct MeshOptions {
     // input triangle). Conformity stays exact and Rule 3's bound holds as before; triangulated surfaces need far
     // fewer vertices (no pumping: fandisk.off 7424 instead of 28003, anchor.off 5360 instead of 18411), but their
     // quality is below the paper's rule's (fandisk.off: min dihedral 0.11 degrees and 25 tets below 10, against 15.0
-    // and none), which is why it is not the default there. Where it would leave an element missing, or (with no min_split_length) its conflict zones
-    // grow large, the input is meshed again with the paper's rule (MeshStats::encroaching_fell_back; bottle.brep's
-    // tessellation).
+    // and none), which is why it is not the default there. Where it would leave an element missing, or (with no
+    // min_split_length) its conflict zones grow large, the input is meshed again with the paper's rule
+    // (MeshStats::encroaching_fell_back; bottle.brep's tessellation).
     Steiner,
   };
   Encroaching encroaching = Encroaching::All;
@@ -148,7 +151,7 @@ struct MeshStats {
   std::size_t num_rejected_circumcenters = 0; // Rule 2 and Rule 3 centres rejected because they encroach
   std::size_t num_subfacet_flips = 0;         // 2D flips made to match a cocircular choice of the 3D triangulation
   std::size_t num_skipped_small_angle = 0;    // Rule 3 skips: shortest edge forced by an acute input angle
-  std::size_t num_skipped_floor = 0;          // Rules 1-2 skips: encroached, but below MeshOptions::min_split_length
+  std::size_t num_skipped_floor = 0;          // Rules 1-2 skips: encroached, but below the split floor
   // Encroaching::Steiner only: it left a subsegment or subfacet missing, or its conflict zones grew too large, so
   // the input was meshed again from the start with the paper's rule (Encroaching::All); the figures are that run's.
   bool encroaching_fell_back = false;

@@ -141,6 +141,7 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
   detail::MeshState& s = *state;
   s.plc = &plc;
   s.set_options(options);
+  s.params.set_rounding_floor(bounding_box(plc).diagonal());
   s.progress = progress;
   s.log = log;
 

@@ -19,6 +19,15 @@ namespace qualmesh::detail {
 
 struct MeshState;
 
+// The rounding floor of Rules 1-2, relative to the input's bounding-box diagonal: a present subsegment shorter than
+// twice it, or subfacet of circumradius below it, stays when merely encroached (missing ones are still split, so
+// conformity is exact). Below it the vertices of one segment no longer lie on one line in doubles: on bottle.brep's
+// sized surface without MeshOptions::min_split_length, concentric shells at a 1.66 deg apex reached 1e-9 (1e-11 of
+// the diagonal), three chain vertices off one line by rounding made a sliver triangle in the facet's 2D
+// triangulation, the next split point landed outside it, and CGAL's 2D flips crashed on the fold (under the paper's
+// rule, the folds left no tetrahedron inside the domain). It applies under either encroachment rule.
+inline constexpr double kRoundingSplitFloor = 1e-9;
+
 // Which vertices inside the diametral ball of a present subsegment or subfacet make Rules 1 and 2 split it
 // (MeshOptions::encroaching). Missing elements are always split, whatever the policy, and so are elements that a
 // rejected Rule 2 or Rule 3 centre encroaches.
@@ -63,12 +72,18 @@ struct RefineParams {
   std::size_t max_vertices = 50'000'000;
   // Rules 1-2's encroachment rule.
   EncroachmentPolicy encroachment;
-  // MeshOptions::min_split_length, squared (0 = none).
+  // MeshOptions::min_split_length, squared (0 = none): the user's floor, applied under the relaxed rule only. The
+  // relaxed rule's conflict-zone budget (scheduler.cpp) applies where it is 0.
   double sq_min_split = 0;
+  // The floor Rules 1-2 apply, squared: the user's, raised to the rounding floor (set_rounding_floor) when that is
+  // larger. 0 = none.
+  double sq_split_floor = 0;
+  // Raises the floor to kRoundingSplitFloor x `diagonal` (the input's bounding-box diagonal).
+  void set_rounding_floor(double diagonal);
   // Whether an encroached, present subsegment of squared length sq_length (subfacet of squared circumradius
   // sq_radius) is below the floor and stays.
-  bool subsegment_below_floor(double sq_length) const { return sq_length < 4 * sq_min_split; }
-  bool subfacet_below_floor(double sq_radius) const { return sq_radius < sq_min_split; }
+  bool subsegment_below_floor(double sq_length) const { return sq_length < 4 * sq_split_floor; }
+  bool subfacet_below_floor(double sq_radius) const { return sq_radius < sq_split_floor; }
 
   // Derives every value from the user's options (the only place that reads them for the engine).
   static RefineParams from(const MeshOptions& options);

@@ -66,9 +66,10 @@ void Rule1Subsegments::refine_one(MeshState& s) {
   if (subsegment_of(s, e.u, e.v) != e.segment) return;  // stale
   Index enc = kNoIndex;
   if (!e.forced && !encroached(s, e.segment, e.u, e.v, &enc)) return;
-  // The floor (MeshOptions::min_split_length): a present subsegment below it stays, unless a subfacet's centre
-  // forced it (below_floor_too); a missing one is split all the same, and either split is counted.
-  if (s.params.sq_min_split > 0 &&
+  // The split floor (RefineParams::sq_split_floor: min_split_length or the rounding floor): a present subsegment
+  // below it stays, unless a subfacet's centre forced it (below_floor_too); a missing one is split all the same, and
+  // either split is counted.
+  if (s.params.sq_split_floor > 0 &&
       s.params.subsegment_below_floor(CGAL::squared_distance(s.kpoint(e.u), s.kpoint(e.v)))) {
     Ch3 c;
     int i = 0, j = 0;
