@@ -17,6 +17,7 @@
 // for any surface input), see read_cad().
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <string>
@@ -87,7 +88,7 @@ struct CadOptions {
 // `qualmesh mesh` sets it for every CAD input (cmd_mesh.cpp), and the tests mesh as the CLI does through it.
 inline double cad_min_split_length(const CadOptions& options, double size) {
   double smallest = options.min_size > 0 ? options.min_size : kDefaultMinSizeFactor * size;
-  for (const CadLocalSize& local : options.local_sizes) smallest = smallest < local.size ? smallest : local.size;
+  for (const CadLocalSize& local : options.local_sizes) smallest = std::min(smallest, local.size);
   return smallest > 0 ? 0.5 * smallest : 0;
 }
 

@@ -69,8 +69,7 @@ void Rule1Subsegments::refine_one(MeshState& s) {
   // The split floor (RefineParams::sq_split_floor: min_split_length or the rounding floor): a present subsegment
   // below it stays, unless a subfacet's centre forced it (below_floor_too); a missing one is split all the same, and
   // either split is counted.
-  if (s.params.sq_split_floor > 0 &&
-      s.params.subsegment_below_floor(CGAL::squared_distance(s.kpoint(e.u), s.kpoint(e.v)))) {
+  if (s.params.subsegment_below_floor(CGAL::squared_distance(s.kpoint(e.u), s.kpoint(e.v)))) {
     Ch3 c;
     int i = 0, j = 0;
     if (!e.below_floor_too && s.tr.is_edge(s.vertices[e.u].handle, s.vertices[e.v].handle, c, i, j)) {

@@ -107,8 +107,7 @@ bool split_subfacet(MeshState& s, Rule2Subfacets& level, Index facet, const std:
   const Conflict conflict = level.conflict(s, facet, abc, center, cz, cand);
   if (conflict == Conflict::SplitSubsegment) ++s.stats.num_rejected_circumcenters;
   if (conflict != Conflict::None) return false;
-  if (s.params.sq_split_floor > 0 &&
-      s.params.subfacet_below_floor(CGAL::squared_radius(s.kpoint(abc[0]), s.kpoint(abc[1]), s.kpoint(abc[2]))))
+  if (s.params.subfacet_below_floor(CGAL::squared_radius(s.kpoint(abc[0]), s.kpoint(abc[1]), s.kpoint(abc[2]))))
     s.count_below_floor_split();  // a missing subfacet below the floor
   const Index w = add_vertex(s, to_point3(center), VertexKind::Facet, facet);
   ++s.stats.num_rule2_insertions;
@@ -133,7 +132,7 @@ void Rule2Subfacets::refine_one(MeshState& s) {
     ++s.stats.num_skipped_small_angle;
     return;
   }
-  if (!missing && s.params.sq_split_floor > 0 &&
+  if (!missing &&
       s.params.subfacet_below_floor(CGAL::squared_radius(s.kpoint(abc[0]), s.kpoint(abc[1]), s.kpoint(abc[2])))) {
     ++s.stats.num_skipped_floor;  // the split floor (RefineParams::sq_split_floor): a present subfacet stays
     return;
