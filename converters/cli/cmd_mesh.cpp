@@ -1,8 +1,8 @@
 // `qualmesh mesh IN -o OUT [--radius-edge 2.0] [--max-edge L] [--max-volume V] [--sliver-angle 15] [--omega 0.5]
-// [--delta 0.45] [--encroaching all|steiner] [--no-pump] [--no-sliver-insertion] [--no-improve]`: weighted Delaunay
-// refinement of the input PLC (Cheng & Dey, QUALMESH: Rules 1-4, then pumping, then points at the slivers pumping
-// left, then the conformity-keeping improvement of the slivers left (beyond the paper, issue 16; --no-improve
-// skips it);
+// [--delta 0.45] [--encroaching all|steiner] [--no-pump] [--no-sliver-insertion] [--sliver-budget F] [--no-improve]`:
+// weighted Delaunay refinement of the input PLC (Cheng & Dey, QUALMESH: Rules 1-4, then pumping, then points at the
+// slivers pumping left, then the conformity-keeping improvement of the slivers left (beyond the paper, issue 16;
+// --no-improve skips it);
 // --no-pump stops after Rules 1-3, --no-sliver-insertion after pumping), written to OUT in the format its extension
 // names. A CAD input's boundary nodes then go onto its CAD faces and edges (fit_mesh_to_cad), and `--order 2` makes
 // 10-node tetrahedra whose mid nodes follow the curved faces. A progress bar on stderr when stderr is a terminal
@@ -43,6 +43,7 @@ struct MeshArgs {
   int order = 1;  // 1: 4-node tetrahedra, 2: 10-node (second_order.h)
   MeshLimits limits;  // --time-limit, --max-memory, --allow-partial (mesh_limits.h)
   CLI::Option* encroaching = nullptr;  // given on the command line, or the input's default
+  CLI::Option* sliver_budget = nullptr;  // likewise
 };
 
 // After meshing: CAD inputs get their boundary nodes (and mid nodes) onto the CAD faces and edges
@@ -106,6 +107,9 @@ int run_mesh(MeshArgs& args) {
   // instead of 4-7x). Surfaces and PLCs keep the paper's rule until the relaxed rule's defects there are gone.
   if (args.encroaching->count() == 0 && has_cad_faces(args.input))
     args.options.encroaching = MeshOptions::Encroaching::Steiner;
+  // More points at the slivers pumping leaves: a CAD surface leaves many more (cad_import.h).
+  if (args.sliver_budget->count() == 0 && has_cad_faces(args.input))
+    args.options.sliver_insertion_budget = kCadSliverInsertionBudget;
   // A CAD surface has nothing finer than the smallest size asked for: encroachment splits stop at half of it
   // (MeshOptions::min_split_length), so that a cusp of the model does not draw refinement down to rounding.
   if (has_cad_faces(args.input) && size > 0)
@@ -262,6 +266,10 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
                     "Plain Delaunay refinement: no Rule 4, no pumping (all weights zero)");
   command->add_flag("--no-sliver-insertion", args->no_sliver_insertion,
                     "Pumping alone: no points inserted at the slivers it leaves");
+  args->sliver_budget = command->add_option(
+      "--sliver-budget", args->options.sliver_insertion_budget,
+      "Points at the slivers pumping leaves add at most this fraction of plain refinement's vertex count (default "
+      "0.048 for surfaces and PLCs, 0.1 for CAD inputs)");
   command->add_flag("--no-improve", args->no_improve,
                     "The engine's weighted Delaunay mesh as is: no vertex moves or flips at the slivers it leaves");
   command->add_option("--order", args->order,

@@ -116,6 +116,7 @@ const Range kSliverAngle{0, true, 60, true,
                          "the regular tetrahedron's dihedral angle is 70.53 degrees: from 60 up nearly every "
                          "tetrahedron counts as a sliver"};
 const Range kOmega{0, true, 1, true, "omega0 of Cheng and Dey, Section 3.3"};
+const Range kSliverBudget{0, false, 1, false, "a fraction of plain refinement's vertex count"};
 const Range kDelta{0, true, 0.5, true, "delta below 1/2 keeps the weighted balls disjoint"};
 const Range kDeflection{0, true, kInf, false, "leave the option out for a deflection relative to the diagonal",
                         1e-150};
@@ -143,6 +144,7 @@ void add_mesh_option_checks(CLI::App& command) {
   add_check(command, "--sliver-angle", real_in(kSliverAngle));
   add_check(command, "--omega", real_in(kOmega));
   add_check(command, "--delta", real_in(kDelta));
+  add_check(command, "--sliver-budget", real_in(kSliverBudget));
   add_check(command, "--deflection", real_in(kDeflection));
   add_check(command, "--relative-deflection", real_in(kRelativeDeflection));
   add_check(command, "--sewing-tolerance", real_in(kSewingTolerance));

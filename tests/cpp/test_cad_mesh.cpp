@@ -49,10 +49,11 @@ double polygon_area(const Plc& plc, const std::vector<Index>& loop) {
 }
 
 // The engine options `qualmesh mesh` gives a CAD input unless told otherwise (cmd_mesh.cpp): the relaxed
-// encroachment rule and the sized surface's target edge length.
+// encroachment rule, the CAD sliver insertion budget and the sized surface's target edge length.
 MeshOptions cad_defaults() {
   MeshOptions options;
   options.encroaching = MeshOptions::Encroaching::Steiner;
+  options.sliver_insertion_budget = kCadSliverInsertionBudget;
   return options;
 }
 

@@ -424,6 +424,36 @@ TEST(SliverInsertion, StackedBoxesWithRegions) {
   expect_insertion_helps(stacked_boxes(), "stacked", {});
 }
 
+// MeshOptions::sliver_insertion_budget bounds the points the pass adds: it inserts while the vertex count is below
+// (1 + budget) x plain refinement's (before Rule 4). A budget one point short of what the default run used stops the
+// same insertions one point earlier; none are added at 0.
+TEST(SliverInsertion, BudgetBoundsTheVertexCount) {
+  PlcBuilder b;
+  b.box({0, 0, 0}, {1, 1, 1});
+  qualmesh::MeshOptions options;
+  options.improve = false;
+  options.max_edge_length = 0.15;
+  const qualmesh::MeshResult full = qualmesh::mesh_plc(b.plc, options);
+  ASSERT_EQ(full.status, qualmesh::MeshStatus::Ok);
+  const auto& st = full.stats;
+  const std::size_t used = st.num_sliver_insertions;
+  ASSERT_GE(used, 2u);  // the box's default run inserts some points, within the default budget
+  const double base = double(st.num_vertices_before_pumping - st.num_rule4_vertices);
+  EXPECT_LE(double(st.num_vertices_before_pumping + used), (1 + options.sliver_insertion_budget) * base);
+
+  options.sliver_insertion_budget = (double(st.num_vertices_before_pumping + used - 1) + 0.5) / base - 1;
+  const qualmesh::MeshResult short_one = qualmesh::mesh_plc(b.plc, options);
+  ASSERT_EQ(short_one.status, qualmesh::MeshStatus::Ok);
+  EXPECT_EQ(short_one.stats.num_vertices_before_pumping, st.num_vertices_before_pumping);
+  EXPECT_EQ(short_one.stats.num_sliver_insertions, used - 1);
+  EXPECT_EQ(short_one.mesh.points.size(), full.mesh.points.size() - 1);
+
+  options.sliver_insertion_budget = 0;
+  const qualmesh::MeshResult none = qualmesh::mesh_plc(b.plc, options);
+  ASSERT_EQ(none.status, qualmesh::MeshStatus::Ok);
+  EXPECT_EQ(none.stats.num_sliver_insertions, 0u);
+}
+
 // Fandisk: besides the properties of expect_pumping_properties, pumping retiles facets (Section 7.2: pumping a facet
 // vertex may change its facet's subfacets; the move is accepted when the new faces cover the same part of the
 // facet) and removes most slivers away from acute input angles.

@@ -119,6 +119,7 @@ FLOAT_OPTIONS = [
     ("--sliver-angle", r"in \(0, 60\)", ["0", "-1", "60", "70.53", "90", "180"]),
     ("--omega", r"in \(0, 1\)", ["0", "1", "-0.5", "10"]),
     ("--delta", r"in \(0, 0\.5\)", ["0", "0.5", "0.9", "-0.1"]),
+    ("--sliver-budget", r"in \[0, 1\]", ["-0.1", "1.5", "-1e-300"]),
     ("--deflection", r"> 0", ["0", "-1"]),
     ("--relative-deflection", r"in \(0, 1\)", ["0", "1", "2", "-0.1"]),
 ]
@@ -228,7 +229,8 @@ for name, path in [("cube-off", "{in}/cube.off"), ("cube-stl", "{in}/cube.stl"),
     case(f"ok-{name}", ["mesh", path, "-o", "{out}"], 0, r"^$")
 for option, value in [("--radius-edge", "1.1"), ("--radius-edge", "1e300"), ("--max-edge", "0.5"),
                       ("--max-volume", "0.01"), ("--max-vertices", "8"), ("--sliver-angle", "59.9"),
-                      ("--sliver-angle", "1e-9"), ("--omega", "0.99"), ("--delta", "0.49"), ("--deflection", "0.01"),
+                      ("--sliver-angle", "1e-9"), ("--omega", "0.99"), ("--delta", "0.49"), ("--sliver-budget", "0"),
+                      ("--sliver-budget", "1"), ("--deflection", "0.01"),
                       ("--relative-deflection", "0.5"), ("--encroaching", "steiner"), ("--encroaching", "ALL")]:
     case(f"ok{option}-{_slug(value)}", ["mesh", BOX, "-o", "{out}", option, value], 0, r"^$")
 for ext in ["vtu", "VTU", "msh", "mesh", "inp", "node", "ele"]:

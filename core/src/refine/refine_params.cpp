@@ -21,6 +21,7 @@ RefineParams RefineParams::from(const MeshOptions& options) {
   p.sliver_angle_deg = options.sliver_angle_deg;
   p.sq_omega = options.omega * options.omega;
   p.sq_delta = options.delta * options.delta;
+  p.sliver_insertion_budget = std::max(0.0, options.sliver_insertion_budget);
   p.max_vertices = options.max_vertices;
   p.encroachment = EncroachmentPolicy(options.encroaching);
   // The user's floor belongs to the relaxed rule: the paper's rule (its fallback included) stays the reference that

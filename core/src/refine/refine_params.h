@@ -68,6 +68,9 @@ struct RefineParams {
   // omega0^2 and delta^2 of the weight caps omega0^2 f(v)^2 (Rule 4, pumping) and delta^2 N(v)^2 (pumping).
   double sq_omega = 0.25;
   double sq_delta = 0.2025;
+  // Sliver insertion's vertex budget: the pass stops once the vertex count exceeds plain refinement's (before Rule 4)
+  // by this fraction (MeshOptions::sliver_insertion_budget; never negative).
+  double sliver_insertion_budget = 0.048;
   // The triangulation's vertex count at which every stage stops (MeshStatus::VertexLimitReached).
   std::size_t max_vertices = 50'000'000;
   // Rules 1-2's encroachment rule.
