@@ -7,7 +7,9 @@ prescribed size), then 2x and 4x finer. At each size both meshers get matched pa
 Reported for both, measured by one checker (`qualmesh check --json`, over ALL tetrahedra): nodes, tets, minimum
 dihedral angle, tets below 10 and 15 degrees, whole-process wall time (file to mesh), and the volume error against
 OpenCASCADE's volume of the solids (read from `qualmesh info`). A mesh file without tetrahedra counts as a failure
-("N (no tets)", no ratios). Not a test: timings are noisy, compare within one run only.
+("N (no tets)", no ratios). For QualMesh's mesh also the largest distance of a boundary node from its CAD face and how
+many nodes lie beyond the face's tolerance (`qualmesh check --ref MODEL`, through OpenCASCADE; Gmsh's face numbers
+are its own, so its mesh is not measured). Not a test: timings are noisy, compare within one run only.
 
 Usage: bench/bench_cad_gmsh.py [--qualmesh build/converters/qualmesh] [--timeout 600] [--curvature 12] [MODEL ...]
 A MODEL is a path, or the name of a file in ../shared/data/cad; with none, every STEP, IGES and BREP file there.
@@ -35,8 +37,11 @@ def timed(cmd, cwd, timeout):
     return time.perf_counter() - start, proc
 
 
-def judge(qualmesh, mesh, cwd):
-    proc = subprocess.run([qualmesh, "check", str(mesh), "--json"], cwd=cwd, capture_output=True, text=True)
+def judge(qualmesh, mesh, cwd, ref=None):
+    """`qualmesh check --json` of a mesh; with `ref` (the CAD model), its boundary nodes are measured against their
+    CAD faces through OpenCASCADE too (the report's "cad" entry)."""
+    command = [qualmesh, "check", str(mesh), "--json"] + (["--ref", str(ref)] if ref else [])
+    proc = subprocess.run(command, cwd=cwd, capture_output=True, text=True)
     try:
         return json.loads(proc.stdout)
     except json.JSONDecodeError:
@@ -67,6 +72,14 @@ def row(report, seconds, ok, cad_volume):
             fmt(seconds, ".2f"), fmt(error, ".2e")]
 
 
+def off_cad(report):
+    """The largest distance of a boundary node from its CAD face, and how many nodes are beyond the face's tolerance."""
+    cad = (report or {}).get("cad")
+    if not cad:
+        return "-"
+    return f"{cad['max_distance']:.2g} ({cad['num_beyond_tolerance']} beyond)"
+
+
 def resolve_model(name):
     """A model given on the command line: a path, or a file name in ../shared/data/cad."""
     path = Path(name)
@@ -92,20 +105,20 @@ def main():
 
     head = ["nodes", "tets", "min dih", "<10", "<15", "wall s", "vol err"]
     print("| model | size | surface | " + " | ".join("QM " + h for h in head) + " | "
-          + " | ".join("Gmsh " + h for h in head) + " | nodes QM/Gmsh | time QM/Gmsh |")
-    print("|" + "---|" * (5 + 2 * len(head)))
+          + " | ".join("Gmsh " + h for h in head) + " | nodes QM/Gmsh | time QM/Gmsh | QM node off CAD |")
+    print("|" + "---|" * (6 + 2 * len(head)))
     with tempfile.TemporaryDirectory() as tmp:
         for model in models:
             diag, cad_volume, surface = model_facts(qualmesh, model, tmp)
             if diag is None:
-                print(f"| {model.name} | - | qualmesh info failed | " + " | ".join(["-"] * (2 * len(head) + 2)) + " |")
+                print(f"| {model.name} | - | qualmesh info failed | " + " | ".join(["-"] * (2 * len(head) + 3)) + " |")
                 continue
             for factor in (1, 2, 4):
                 size = diag / 10 / factor
                 qm_out, g_out = Path(tmp) / "qm.vtu", Path(tmp) / "gmsh.msh"
                 t_q, q = timed([qualmesh, "mesh", str(model), "-o", str(qm_out), "--size", f"{size:.6g}",
                                 "--curvature", f"{args.curvature:g}"], tmp, args.timeout)
-                q_rep = judge(qualmesh, qm_out, tmp) if q.returncode == 0 else None
+                q_rep = judge(qualmesh, qm_out, tmp, ref=model) if q.returncode == 0 else None
                 t_g, g = timed(["gmsh", "-3", str(model), "-clmax", f"{size:.6g}", "-clcurv", f"{args.curvature:g}",
                                 "-format", "msh41", "-o", str(g_out)], tmp, args.timeout)
                 g_ok = g.returncode == 0 and g_out.exists()
@@ -114,7 +127,7 @@ def main():
                 ratio_n = fmt(q_rep["num_points"] / g_rep["num_points"], ".2f") if both else "-"
                 ratio_t = fmt(t_q / t_g, ".2f") if both else "-"
                 cells = [model.name, f"{size:.4g}", surface] + row(q_rep, t_q, q.returncode == 0, cad_volume) + \
-                    row(g_rep, t_g, g_ok, cad_volume) + [ratio_n, ratio_t]
+                    row(g_rep, t_g, g_ok, cad_volume) + [ratio_n, ratio_t, off_cad(q_rep)]
                 print("| " + " | ".join(cells) + " |", flush=True)
                 for f in (qm_out, g_out):
                     f.unlink(missing_ok=True)
