@@ -195,7 +195,7 @@ bool project_onto_cad(const std::string& path, const CadOptions& options, int ed
 // boundary face with label f is measured against CAD face Face<f> by distances_to_cad_faces, and the mesh volume
 // against OpenCASCADE's volume of the solids.
 struct CadConformity {
-  std::size_t num_nodes = 0;         // boundary nodes measured (a node on k faces counts k times)
+  std::size_t num_nodes = 0;         // boundary nodes measured (a node on k CAD faces counts k times)
   std::size_t num_beyond = 0;        // farther from their face than its tolerance (CadSummary::face_tolerances)
   double max_distance = 0;           // model units
   double max_relative_to_tolerance = 0;  // max over nodes of distance / that face's tolerance
