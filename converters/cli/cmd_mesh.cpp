@@ -102,24 +102,25 @@ int run_mesh(MeshArgs& args) {
   std::vector<std::string> notes;  // a surface's repairs (CAD inputs' notes are `info`'s)
   const Plc plc = load_input(args.input, args.input_options, &notes, &size);
   args.options.target_edge_length = size;
+  const bool cad = has_cad_faces(args.input);
   // A CAD input's surface is made for the volume mesher (well-shaped triangles at the size field), so its default is
   // the relaxed rule: input vertices do not encroach (issue 16's decision; at equal size about Gmsh's node count
   // instead of 4-7x). Surfaces and PLCs keep the paper's rule until the relaxed rule's defects there are gone.
-  if (args.encroaching->count() == 0 && has_cad_faces(args.input))
+  if (cad && args.encroaching->count() == 0)
     args.options.encroaching = MeshOptions::Encroaching::Steiner;
   // More points at the slivers pumping leaves: a CAD surface leaves many more (cad_import.h).
-  if (args.sliver_budget->count() == 0 && has_cad_faces(args.input))
+  if (cad && args.sliver_budget->count() == 0)
     args.options.sliver_insertion_budget = kCadSliverInsertionBudget;
   // A CAD surface has nothing finer than the smallest size asked for: encroachment splits stop at half of it
   // (MeshOptions::min_split_length), so that a cusp of the model does not draw refinement down to rounding.
-  if (has_cad_faces(args.input) && size > 0)
+  if (cad && size > 0)
     args.options.min_split_length = cad_min_split_length(cad_options_of(args.input_options), size);
   args.options.project_to_boundary = cad_projector(args.input, args.input_options);  // curved CAD faces and edges
   if (!check_mesh_input(plc, args.input, args.options, args.verbose)) return kExitBadInput;  // as `info` validates
   if (!check_size_estimate(plc, args.input, args.options, args.limits, args.verbose)) return kExitResource;  // mesh_limits.h
   args.options.cancel = make_cancel(args.limits);
   std::optional<CadFitReport> corner_fit;
-  if (has_cad_faces(args.input))
+  if (cad)
     args.options.before_improve = [&](TetMesh& mesh) {  // once per solid meshed apart (components.h): summed
       const CadFitReport r = fit_to_cad_input(args.input, args.input_options, CadFitOptions{}, mesh);
       if (!corner_fit) {
