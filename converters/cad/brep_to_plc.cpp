@@ -101,6 +101,14 @@ class PlcBuilder {
     summary.num_faces = faces_.Extent();
     summary.num_edges = edges_.Extent();
     summary.num_vertices = vertices_.Extent();
+    for (int f = 1; f <= faces_.Extent(); ++f) {
+      double tolerance = BRep_Tool::Tolerance(TopoDS::Face(faces_(f)));
+      for (TopExp_Explorer it(faces_(f), TopAbs_EDGE); it.More(); it.Next())
+        tolerance = std::max(tolerance, BRep_Tool::Tolerance(TopoDS::Edge(it.Current())));
+      for (TopExp_Explorer it(faces_(f), TopAbs_VERTEX); it.More(); it.Next())
+        tolerance = std::max(tolerance, BRep_Tool::Tolerance(TopoDS::Vertex(it.Current())));
+      summary.node_tolerances.push_back(tolerance);
+    }
     model_.plc.name = file_;
     if (options_.surface_mesh == CadSurfaceMesh::Sized) return convert_sized();
 

@@ -6,12 +6,14 @@
 //
 // Projection: ShapeAnalysis_Surface::ValueOfUV (robust on periodic and singular surfaces) for faces, after a Newton
 // step from an earlier projection nearby for a point already on the surface (Projector::FaceData::project),
-// ShapeAnalysis_Curve::Project within the edge's parameter range for edges. A node within the chordal deflection of
-// its face moves at most about that far, but a move is always checked against the elements around the node
-// (move_nodes_checked, second_order.h): relaxed part of the way, or not made, rather than inverting an element.
+// ShapeAnalysis_Curve::Project within the edge's parameter range for edges, and on a free-form curve
+// GeomAPI_ProjectPointOnCurve's global search as well. A node within the chordal deflection of its face moves at
+// most about that far, but a move is always checked against the elements around the node (move_nodes_checked,
+// second_order.h): relaxed part of the way, or not made, rather than inverting an element.
 #include <BRepBndLib.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
+#include <GeomAPI_ProjectPointOnCurve.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <GeomAdaptor_Surface.hxx>
 #include <Geom_Curve.hxx>
@@ -111,6 +113,15 @@ class Projector {
     double parameter = 0;
     ShapeAnalysis_Curve().Project(data->curve, local, data->precision, projected, parameter, data->first,
                                   data->last);
+    // ShapeAnalysis_Curve::Project can stop at a local minimum of a free-form curve: on bottle.brep's thread, Edge10
+    // (a B-spline of degree 12 over two turns of a helix), it answered 1.25 away, a turn off, where the curve
+    // passes 0.0016 from the point. Extrema's global search (GeomAPI_ProjectPointOnCurve) finds the interior
+    // extrema; the nearer answer wins (an end of the range, where there is no extremum, is ShapeAnalysis's).
+    if (data->free_form) {
+      GeomAPI_ProjectPointOnCurve global(local, data->curve, data->first, data->last);
+      if (global.NbPoints() > 0 && global.LowerDistance() < projected.Distance(local))
+        projected = global.NearestPoint();
+    }
     const gp_Pnt q = projected.Transformed(data->to_global);
     target = {q.X(), q.Y(), q.Z()};
     return true;
@@ -188,6 +199,7 @@ class Projector {
     gp_Trsf to_local, to_global;
     double precision = 1e-9;
     bool straight = false;
+    bool free_form = false;  // not a line, circle, ellipse, hyperbola or parabola (onto_edge)
   };
 
   FaceData* face(int f) {
@@ -238,7 +250,10 @@ class Projector {
           data->to_global = location.Transformation();
           data->to_local = location.Transformation().Inverted();
           data->precision = std::max(1e-12, 1e-3 * BRep_Tool::Tolerance(edge));
-          data->straight = GeomAdaptor_Curve(curve).GetType() == GeomAbs_Line;
+          const GeomAbs_CurveType type = GeomAdaptor_Curve(curve).GetType();
+          data->straight = type == GeomAbs_Line;
+          data->free_form = type != GeomAbs_Line && type != GeomAbs_Circle && type != GeomAbs_Ellipse &&
+                            type != GeomAbs_Hyperbola && type != GeomAbs_Parabola;
         }
       }
       it = edge_data_.emplace(e, std::move(data)).first;

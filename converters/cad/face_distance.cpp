@@ -1,7 +1,7 @@
 // Independent check of a mesh against its CAD model (cad_import.h, distances_to_cad_faces): the distance from each
 // given point to the CAD face it claims to lie on, measured by OpenCASCADE (BRepExtrema, which honours the face's
 // trimming). FreeCAD's FEM finds a constraint's nodes the same way, so a boundary node farther from its face than
-// the face's tolerance plus the deflection would silently lose its load there (shared/docs/FREECAD.md).
+// the face's tolerance (CadSummary::node_tolerances) silently loses its load there (shared/docs/FREECAD.md).
 //
 // BRepExtrema misjudges points inside a periodic face that winds more than once around its axis: bottle.brep's
 // thread, Face6, is a band on a cylinder over u in [0.12, 12.45]. Nodes of that band that lie on the cylinder to
@@ -133,7 +133,7 @@ CadConformity measure_against_cad(const std::string& path, const CadOptions& opt
     faces.push_back(face);
   }
   const std::vector<double> d = distances_to_cad_faces(path, points, faces, options);
-  const auto& tolerances = model.summary.face_tolerances;
+  const auto& tolerances = model.summary.node_tolerances;
   result.num_nodes = d.size();
   for (std::size_t i = 0; i < d.size(); ++i) {
     const int f = faces[i];

@@ -116,6 +116,11 @@ struct CadSummary {
   // deflection used (OpenCASCADE controls the deflection at sample points only) plus the face's and its edges'
   // tolerances. Empty for .scad (the facets are the model).
   std::vector<double> face_tolerances;
+  // How far a NODE of a face may lie from it, per face, in model units: OpenCASCADE's tolerance of the face, raised
+  // to its edges' and vertices' (a node on an edge lies on the edge's curve, which the face's surface holds only to
+  // the edge's tolerance). FreeCAD's node search (FemMesh::getNodesByFace) takes a node within the face's tolerance,
+  // so a node farther off is a node whose load is lost. Empty for .scad.
+  std::vector<double> node_tolerances;
   double deflection_used = 0;  // absolute chordal deflection actually used (Sized: largest measured), model units
   double size_used = 0;        // Sized: the target edge length used (CadOptions::size or its default), model units
   // Sized: non-empty when the sized surface mesh was refused by validate_plc and the model tessellated instead.
@@ -196,7 +201,7 @@ bool project_onto_cad(const std::string& path, const CadOptions& options, int ed
 // against OpenCASCADE's volume of the solids.
 struct CadConformity {
   std::size_t num_nodes = 0;         // boundary nodes measured (a node on k CAD faces counts k times)
-  std::size_t num_beyond = 0;        // farther from their face than its tolerance (CadSummary::face_tolerances)
+  std::size_t num_beyond = 0;        // farther from their face than its tolerance (CadSummary::node_tolerances)
   double max_distance = 0;           // model units
   double max_relative_to_tolerance = 0;  // max over nodes of distance / that face's tolerance
   double cad_volume = 0;             // sum of CadSummary::solid_volumes

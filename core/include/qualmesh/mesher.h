@@ -161,6 +161,9 @@ struct MeshStats {
   // Encroaching::Steiner only: it left a subsegment or subfacet missing, or its conflict zones grew too large, so
   // the input was meshed again from the start with the paper's rule (Encroaching::All); the figures are that run's.
   bool encroaching_fell_back = false;
+  // Encroaching::Steiner only: times the regions were flooded again after refinement because a region's boundary
+  // crossed a face that is no subfacet while every subfacet was present (mesher.cpp reflood_regions).
+  std::size_t num_region_refloods = 0;
   // MeshOptions::project_to_boundary was set and meshing gave up with it (the relaxed rule gave up, or pumping added
   // more than a tenth of the vertices it started with plus 200): the input was meshed again without it (before falling
   // back to the paper's rule), so Rule 1 and 2 points stayed on the facets.

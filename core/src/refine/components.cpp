@@ -195,7 +195,8 @@ void merge_stats(MeshStats& a, const MeshStats& b) {
                      &MeshStats::num_vertices_pumped, &MeshStats::num_pump_moves, &MeshStats::num_pump_rejected,
                      &MeshStats::num_tets_improved, &MeshStats::num_improve_vertex_moves,
                      &MeshStats::num_improve_flips, &MeshStats::num_improve_insertions,
-                     &MeshStats::num_improve_caps_removed, &MeshStats::num_tets_below_sliver_angle_away_from_acute})
+                     &MeshStats::num_improve_caps_removed, &MeshStats::num_tets_below_sliver_angle_away_from_acute,
+                     &MeshStats::num_region_refloods})
     a.*field += b.*field;
   for (auto field : {&MeshStats::seconds_initial, &MeshStats::seconds_boundary, &MeshStats::seconds_regions,
                      &MeshStats::seconds_refinement, &MeshStats::seconds_pumping, &MeshStats::seconds_extraction,

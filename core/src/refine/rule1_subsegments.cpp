@@ -48,10 +48,22 @@ Point3 Rule1Subsegments::refinement_point(const MeshState& s, Index segment, Ind
   const Point3& a = s.point(sg.a);
   const Point3& b = s.point(sg.b);
   Point3 p{a[0] + *t * (b[0] - a[0]), a[1] + *t * (b[1] - a[1]), a[2] + *t * (b[2] - a[2])};
-  // On a curved CAD edge or face: onto it (boundary_projection.cpp), by at most a quarter of the subsegment.
+  if (!s.options.project_to_boundary) return p;
+  // On a curved CAD edge or face: onto it (boundary_projection.cpp), by at most a quarter of the subsegment. The
+  // point goes at the same place between u and v as t is between theirs, on the chord uv: u and v were projected
+  // when they were inserted, so uv is off the curve by its own sagitta only, while the input segment ab is off it by
+  // the whole tessellation chord's. From ab, a split near the tips of part.step's cusps moved 0.36 against a
+  // subsegment of 1 and was refused, and the fit after meshing could move the node only part of the way.
   const Point3 &pu = s.point(u), &pv = s.point(v);
   const double length =
       std::sqrt((pu[0] - pv[0]) * (pu[0] - pv[0]) + (pu[1] - pv[1]) * (pu[1] - pv[1]) + (pu[2] - pv[2]) * (pu[2] - pv[2]));
+  const auto param = [&](Index w) { return w == sg.a ? 0.0 : (w == sg.b ? 1.0 : s.vertices[w].t); };
+  const double tu = param(u), tv = param(v);
+  if (tv != tu) {
+    const double f = (*t - tu) / (tv - tu);
+    Point3 q{pu[0] + f * (pv[0] - pu[0]), pu[1] + f * (pv[1] - pu[1]), pu[2] + f * (pv[2] - pu[2])};
+    if (project_segment_point(s, segment, 0.25 * length, q)) return q;
+  }
   project_segment_point(s, segment, 0.25 * length, p);
   return p;
 }
