@@ -202,6 +202,8 @@ bool vertex_on_plane(const MeshState& s, Index v, Index group);
 Index next_on_segment(const MeshState& s, Index segment, Index v);
 // The segment of which (u, v) is a subsegment (consecutive vertices), or kNoIndex.
 Index subsegment_of(const MeshState& s, Index u, Index v);
+// The parameter of vertex w along `segment`: 0 at its `a`, 1 at its `b`, VertexRecord::t for a vertex inside it.
+double segment_parameter(const MeshState& s, Index segment, Index w);
 // Rule 1 split point of subsegment (u, v) of `segment`: its midpoint, or Shewchuk's concentric-shell point when an
 // end is an acute input vertex. Returns the parameter t along the segment.
 double subsegment_split_parameter(const MeshState& s, Index segment, Index u, Index v);

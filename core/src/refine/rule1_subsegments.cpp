@@ -57,8 +57,7 @@ Point3 Rule1Subsegments::refinement_point(const MeshState& s, Index segment, Ind
   const Point3 &pu = s.point(u), &pv = s.point(v);
   const double length =
       std::sqrt((pu[0] - pv[0]) * (pu[0] - pv[0]) + (pu[1] - pv[1]) * (pu[1] - pv[1]) + (pu[2] - pv[2]) * (pu[2] - pv[2]));
-  const auto param = [&](Index w) { return w == sg.a ? 0.0 : (w == sg.b ? 1.0 : s.vertices[w].t); };
-  const double tu = param(u), tv = param(v);
+  const double tu = segment_parameter(s, segment, u), tv = segment_parameter(s, segment, v);
   if (tv != tu) {
     const double f = (*t - tu) / (tv - tu);
     Point3 q{pu[0] + f * (pv[0] - pu[0]), pu[1] + f * (pv[1] - pu[1]), pu[2] + f * (pv[2] - pu[2])};

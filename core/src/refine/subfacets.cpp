@@ -223,9 +223,7 @@ void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::arra
       // neither does, e.g. collinear with a neighbour on a straight chain, the projected point is kept: CGAL's
       // flips repair those, 1385_Laufrad_1000.stp has such points and meshes exactly.)
       if (!splits_edge_without_fold(fm.cdt, fh, i, p)) {
-        const Segment& sg = s.complex.segments[r.host];
-        auto param = [&](Index v) { return v == sg.a ? 0.0 : (v == sg.b ? 1.0 : s.vertices[v].t); };
-        const double ta = param(r.prev), tb = param(r.next);
+        const double ta = segment_parameter(s, r.host, r.prev), tb = segment_parameter(s, r.host, r.next);
         const KPoint2 pa = a->point(), pb = b->point();
         const double u = tb != ta ? (r.t - ta) / (tb - ta) : 0.5;
         const KPoint2 q(pa.x() + u * (pb.x() - pa.x()), pa.y() + u * (pb.y() - pa.y()));

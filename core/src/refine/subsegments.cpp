@@ -96,10 +96,14 @@ Index subsegment_of(const MeshState& s, Index u, Index v) {
   return kNoIndex;
 }
 
+double segment_parameter(const MeshState& s, Index segment, Index w) {
+  const Segment& seg = s.complex.segments[segment];
+  return w == seg.a ? 0.0 : (w == seg.b ? 1.0 : s.vertices[w].t);
+}
+
 double subsegment_split_parameter(const MeshState& s, Index segment, Index u, Index v) {
   const Segment& seg = s.complex.segments[segment];
-  auto param = [&](Index w) { return w == seg.a ? 0.0 : (w == seg.b ? 1.0 : s.vertices[w].t); };
-  const double tu = param(u), tv = param(v);
+  const double tu = segment_parameter(s, segment, u), tv = segment_parameter(s, segment, v);
   const double mid = 0.5 * (tu + tv);
   const bool acute_a = s.complex.acute_vertex[seg.a] != 0, acute_b = s.complex.acute_vertex[seg.b] != 0;
   if (!acute_a && !acute_b) return mid;
