@@ -1,12 +1,13 @@
 // Size field of the sized CAD surface mesh (face_mesh.h): one target edge length per CAD face and per CAD edge, in
 // model units, from the options an FEM user gives (CadOptions: Gmsh's and FreeCAD's vocabulary).
 //
-//   face size(f) = max(min_size, min(size, 2 pi / (k_max(f) * curvature_elements), local sizes on Face f and on the
-//                  solids around it))
+//   face size(f) = max(min_size, min(size, curvature size(f), local sizes on Face f and on the solids around it))
 //   edge size(e) = min(the sizes of the faces that use e, 2 pi / (kappa_max(e) * curvature_elements), local size on
 //                  Edge e), at least min_size
-// where k_max(f) is the largest principal curvature of the face and kappa_max(e) the largest curvature of the edge,
-// both sampled (Gmsh's MeshSizeFromCurvature, BackgroundMeshTools.cpp, takes the same 2 pi / (k N)). Sizes are
+// where the curvature size of an analytic face is 2 pi / (k N) for its largest principal curvature k, that of a
+// free-form face the uniform size with as many triangles as the pointwise 2 pi / (k(x) N) (face_curvature_size), and
+// kappa_max(e) the largest curvature of the edge, sampled (Gmsh's MeshSizeFromCurvature, BackgroundMeshTools.cpp,
+// takes the same 2 pi / (k N), point by point). Sizes are
 // constant per entity: an edge is discretised uniformly in arc length (GCPnts_UniformAbscissa), a face is meshed to
 // its own size. Gradation (> 1) then limits the ratio of the sizes of two faces sharing an edge. Private to
 // converters/cad (OpenCASCADE types).
@@ -42,8 +43,10 @@ class SizeField {
   std::vector<double> face_sizes_, edge_sizes_;  // index 0 unused
 };
 
-// Largest principal curvature of a face (1/model units), sampled on a grid over its parameter box; 0 for a plane.
-double max_face_curvature(const TopoDS_Face& face);
+// The curvature size of a face, in [min_size, target]: 2 pi / (k N) on a cylinder, sphere or torus (k their largest
+// principal curvature, N `elements`), `target` on a plane; on a free-form face the one size that gives it as many
+// triangles as the pointwise size 2 pi / (k(x) N) would (sampled). `target` when N is 0.
+double face_curvature_size(const TopoDS_Face& face, double target, double min_size, double elements);
 // Largest curvature of an edge's curve, sampled; 0 for a line or a degenerate edge.
 double max_edge_curvature(const TopoDS_Edge& edge);
 
