@@ -180,10 +180,10 @@ class FaceRemesher {
                                    .projection_functor(project_node));
       auto held = mesh_.add_property_map<VertexD, bool>("v:held", false).first;
       for (VertexD v : mesh_.vertices()) held[v] = vertex_fixed_[v];
-      for (VertexD v : mesh_.vertices()) {  // on a plane, the neighbours of nodes on the face's border
-        if (surface_.GetType() == GeomAbs_Plane && mesh_.is_border(v))
-          for (VertexD w : CGAL::vertices_around_target(mesh_.halfedge(v), mesh_)) held[w] = true;
-      }
+      if (surface_.GetType() == GeomAbs_Plane)  // the neighbours of nodes on the face's border
+        for (VertexD v : mesh_.vertices())
+          if (mesh_.is_border(v))
+            for (VertexD w : CGAL::vertices_around_target(mesh_.halfedge(v), mesh_)) held[w] = true;
       PMP::isotropic_remeshing(faces(mesh_), target, mesh_,
                                CGAL::parameters::number_of_iterations(1)
                                    .do_split(false)

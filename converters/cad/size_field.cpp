@@ -45,6 +45,11 @@ double curvature_size(double curvature, double elements) {
   return 2 * M_PI / (curvature * elements);
 }
 
+// The curvature size clamped to [min_size, target]: the size of a point of curvature k.
+double clamped_curvature_size(double k, double target, double min_size, double elements) {
+  return std::max(min_size, std::min(target, curvature_size(k, elements)));
+}
+
 // Distinct, non-degenerate edges of a face (a seam counts once).
 int num_edges_of(const TopoDS_Face& face) {
   TopTools_IndexedMapOfShape edges;
@@ -57,7 +62,7 @@ int num_edges_of(const TopoDS_Face& face) {
 }  // namespace
 
 double face_curvature_size(const TopoDS_Face& face, double target, double min_size, double elements) {
-  const auto size_at = [&](double k) { return std::max(min_size, std::min(target, curvature_size(k, elements))); };
+  const auto size_at = [&](double k) { return clamped_curvature_size(k, target, min_size, elements); };
   BRepAdaptor_Surface surface(face, Standard_True);
   switch (surface.GetType()) {  // exact for the analytic surfaces, whose largest curvature is the same everywhere
     case GeomAbs_Plane: return target;
@@ -187,8 +192,7 @@ SizeField::SizeField(const TopTools_IndexedMapOfShape& solids, const TopTools_In
   edge_sizes_.assign(num_edges + 1, target_);
   for (int e = 1; e <= num_edges; ++e) {
     const TopoDS_Edge edge = TopoDS::Edge(edges(e));
-    double h = std::max(min_size_, std::min(target_, curvature_size(max_edge_curvature(edge),
-                                                                     options.curvature_elements)));
+    double h = clamped_curvature_size(max_edge_curvature(edge), target_, min_size_, options.curvature_elements);
     faces_of(e, [&](int f) { h = std::min(h, face_sizes_[f]); });
     edge_sizes_[e] = std::min(h, local_edge[e]);
   }
