@@ -65,27 +65,6 @@ bool steiner_holds(detail::MeshState& s, const char* when) {
   return false;
 }
 
-// Encroaching::Steiner: when every subsegment and subfacet is present but a region's boundary crosses a face that
-// is none (the region labels that insertions hand on went wrong somewhere: steiner_holds() names a flood through a
-// subfacet missing at that moment), the regions are flooded again from the outside, now bounded by subfacets that
-// are all present, and Rule 3 refines the cells that changed side.
-// Up to kMaxRefloods times; steiner_holds() then judges the result. U_Joint_2.stp at --size 6.85 with boundary
-// points projected onto the CAD surface gave up here and was meshed again without the projection, leaving 160
-// boundary nodes that the CAD fit could not move onto the surface.
-void reflood_regions(detail::MeshState& s) {
-  constexpr int kMaxRefloods = 2;
-  for (int round = 0; round < kMaxRefloods; ++round) {
-    if (s.params.encroachment.paper() || s.vertex_limit_reached || !s.steiner_abandoned.empty() ||
-        !s.regions_known || detail::region_boundaries_are_subfacets(s) || !detail::boundary_present(s))
-      return;
-    s.log_line("regions: a region's boundary crosses no subfacet after refinement; flooding the regions again");
-    ++s.stats.num_region_refloods;
-    detail::compute_regions(s);
-    detail::enqueue_all_tets(s);
-    detail::run_refinement(s, true);
-  }
-}
-
 // MeshOptions::project_to_boundary's safety net in Rules 1-2 (MeshState::count_below_floor_split): true (and a log
 // line) when `stage` split more elements below the floor than the budget allows; mesh_plc() meshes again without
 // the projection.
@@ -197,7 +176,7 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
     begin_stage(s, MeshStage::Refinement);
     detail::enqueue_all_tets(s);
     detail::run_refinement(s, true);
-    reflood_regions(s);
+    detail::reflood_regions(s);
     if (refinement_ran_away(s, "refinement") || !steiner_holds(s, "after refinement")) return std::nullopt;
     if (!s.region_pending.empty()) {
       std::vector<detail::Ch3> assigned;
