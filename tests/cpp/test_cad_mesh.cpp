@@ -216,6 +216,21 @@ TEST(CadMeshes, Cube1000AtHalfItsDefaultSizeHasNoFlatCellOutsideTheBoundary) {
   EXPECT_GT(stats.min_dihedral_deg, 5.0);
 }
 
+// wrenchnut.stp at bench_cad_gmsh's second size (--size 20.3), as `qualmesh mesh` meshes it: the improvement pass
+// kept a 0.62 deg cap between CAD faces 25 and 27, which meet at 178.8 deg along a B-spline edge. Its four corners
+// are nearly cocircular (radius-edge ratio 3.54), and the 3-2 flip that removes it makes two 23.8 deg tets of ratio
+// 3.61, which a bound of 1.5 rho0 on changed tets refused (mesher.h kImproveRadiusEdgeFactor, now 2 rho0): 12.07 deg.
+TEST(CadMeshes, WrenchnutAtHalfItsDefaultSizeHasNoTetBelowTenDegrees) {
+  CadOptions cad;
+  cad.size = 20.3044;
+  MeshOptions options = cad_defaults();
+  options.min_split_length = cad_min_split_length(cad, cad.size);
+  options = projecting(options, "wrenchnut.stp", cad);
+  MeshStats stats;
+  expect_mesh_matches_cad("wrenchnut.stp", options, &stats, cad);
+  EXPECT_GT(stats.min_dihedral_deg, 10.0);
+}
+
 // U_Joint_2.stp at bench_cad_gmsh's second size (--size 6.85): with Rule 1 and 2 points projected onto the CAD
 // surface, a region's boundary crossed a face that was no subfacet after refinement, while every subfacet was
 // present. The run was meshed again without the projection, and the CAD fit could not move 160 of the 1634 nodes
