@@ -235,9 +235,10 @@ TEST(CadMeshes, WrenchnutAtHalfItsDefaultSizeHasNoTetBelowTenDegrees) {
 // surface, a region's boundary crossed a face that was no subfacet after refinement, while every subfacet was
 // present. The run was meshed again without the projection, and the CAD fit could not move 160 of the 1634 nodes
 // it left on the facets onto the surface (45 part way, 115 not at all). The regions are now flooded again
-// (mesher.cpp reflood_regions), the projection stays, and every boundary node lies on its CAD face. Since session
+// (regions.cpp reflood_regions), the projection stays, and every boundary node lies on its CAD face. Since session
 // 30's surface (the remesher no longer holds the nodes next to a curved face's border) this input needs no reflood:
-// the test keeps the properties, and reflood_regions has no input that exercises it (issue 15's note).
+// the test keeps the properties; Levels.RegionsFloodedAgainWhenALabelCrossesNoSubfacet (test_levels.cpp) exercises
+// reflood_regions on a constructed case.
 TEST(CadMeshesNoPump, UJointAtHalfItsDefaultSizeKeepsItsNodesOnTheSurface) {
   CadOptions cad;
   cad.size = 6.8513;

@@ -334,7 +334,8 @@ void compute_regions(MeshState& s);
 // Floods the cells created by boundary insertions since the last flood; calls `on_cell` for each assigned cell.
 void flood_pending_regions(MeshState& s, std::vector<Ch3>& assigned);
 // Encroaching::Steiner, after Rule 3's stage: where every subsegment and subfacet is present but a region boundary
-// crosses a face that is none, floods the regions again and refines again (up to twice; MeshStats::num_region_refloods).
+// crosses a face that is none, floods the regions again and refines again (up to twice;
+// MeshStats::num_region_refloods).
 void reflood_regions(MeshState& s);
 
 // --- extraction (extract.cpp) ---

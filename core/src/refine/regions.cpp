@@ -128,8 +128,8 @@ void flood_pending_regions(MeshState& s, std::vector<Ch3>& assigned) {
 // are all present, and Rule 3 refines the cells that changed side.
 // Up to kMaxRefloods times; steiner_holds() then judges the result. U_Joint_2.stp at --size 6.85 with boundary
 // points projected onto the CAD surface gave up here and was meshed again without the projection, leaving 160
-// boundary nodes that the CAD fit could not move onto the surface. Since the CAD surface remesher's change of session 30
-// no bench model needs it; tests/cpp/test_levels.cpp's constructed case exercises it.
+// boundary nodes that the CAD fit could not move onto the surface. Since the CAD surface remesher's change of
+// session 30 no bench model needs it; tests/cpp/test_levels.cpp's constructed case exercises it.
 void reflood_regions(MeshState& s) {
   constexpr int kMaxRefloods = 2;
   for (int round = 0; round < kMaxRefloods; ++round) {
