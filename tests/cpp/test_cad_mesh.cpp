@@ -200,6 +200,14 @@ INSTANTIATE_TEST_SUITE_P(SharedData, CadMeshesNoPump,
                                            "918_pump_carter_sup_21_03_2006.stp", "U_Joint_2.stp", "model1.igs"),
                          file_test_name);
 
+// The mesher's options as `qualmesh mesh` makes them for CAD file `name` at `cad.size` (cmd_mesh.cpp): the CAD
+// defaults, the split floor, and boundary points onto the CAD surface.
+MeshOptions as_the_cli_meshes(const std::string& name, const CadOptions& cad) {
+  MeshOptions options = cad_defaults();
+  options.min_split_length = cad_min_split_length(cad, cad.size);
+  return projecting(options, name, cad);
+}
+
 // cube1000.igs at 2x Gmsh's default size (27.95; the CLI's first mesh of bench_cad_gmsh's second size): Rule 4's
 // cascade of boundary splits on the tessellated plane x + y = -707.1 left two flat cells (four coplanar points,
 // one face a subfacet, the other three against outside cells) inside the domain: a 1.5e-12 deg tetrahedron and six
@@ -207,10 +215,7 @@ INSTANTIATE_TEST_SUITE_P(SharedData, CadMeshesNoPump,
 TEST(CadMeshes, Cube1000AtHalfItsDefaultSizeHasNoFlatCellOutsideTheBoundary) {
   CadOptions cad;
   cad.size = 27.95;
-  MeshOptions options = cad_defaults();
-  // As `qualmesh mesh` makes them (cmd_mesh.cpp): the split floor, and boundary points onto the CAD surface.
-  options.min_split_length = cad_min_split_length(cad, cad.size);
-  options = projecting(options, "cube1000.igs", cad);
+  const MeshOptions options = as_the_cli_meshes("cube1000.igs", cad);
   MeshStats stats;
   expect_mesh_matches_cad("cube1000.igs", options, &stats, cad);  // face ids 1..N, positive volumes
   EXPECT_GT(stats.min_dihedral_deg, 5.0);
@@ -223,9 +228,7 @@ TEST(CadMeshes, Cube1000AtHalfItsDefaultSizeHasNoFlatCellOutsideTheBoundary) {
 TEST(CadMeshes, WrenchnutAtHalfItsDefaultSizeHasNoTetBelowTenDegrees) {
   CadOptions cad;
   cad.size = 20.3044;
-  MeshOptions options = cad_defaults();
-  options.min_split_length = cad_min_split_length(cad, cad.size);
-  options = projecting(options, "wrenchnut.stp", cad);
+  const MeshOptions options = as_the_cli_meshes("wrenchnut.stp", cad);
   MeshStats stats;
   expect_mesh_matches_cad("wrenchnut.stp", options, &stats, cad);
   EXPECT_GT(stats.min_dihedral_deg, 10.0);

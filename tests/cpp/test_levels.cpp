@@ -390,13 +390,18 @@ TEST(Levels, SameMeshTwiceInOneProcessUnderEitherRule) {
   }
 }
 
+// The options of the refined-box tests below: edges up to 0.35, no pumping, the given encroachment rule.
+MeshOptions box_refinement(MeshOptions::Encroaching rule) {
+  MeshOptions options;
+  options.max_edge_length = 0.35;
+  options.pump = false;
+  options.encroaching = rule;
+  return options;
+}
+
 TEST(Levels, ReRefiningARefinedMeshAddsNothing) {
   for (const auto rule : {MeshOptions::Encroaching::All, MeshOptions::Encroaching::Steiner}) {
-    MeshOptions options;
-    options.max_edge_length = 0.35;
-    options.pump = false;
-    options.encroaching = rule;
-    Engine e(box({0, 0, 0}, {1, 2, 1}), options);
+    Engine e(box({0, 0, 0}, {1, 2, 1}), box_refinement(rule));
     e.refine();
     d::MeshState& s = e.s;
     const std::size_t num_vertices = s.tr.number_of_vertices();
@@ -419,11 +424,7 @@ TEST(Levels, ReRefiningARefinedMeshAddsNothing) {
 // it any more (session 30), so this constructed case is its test.
 TEST(Levels, RegionsFloodedAgainWhenALabelCrossesNoSubfacet) {
   for (const auto rule : {MeshOptions::Encroaching::All, MeshOptions::Encroaching::Steiner}) {
-    MeshOptions options;
-    options.max_edge_length = 0.35;
-    options.pump = false;
-    options.encroaching = rule;
-    Engine e(box({0, 0, 0}, {1, 2, 1}), options);
+    Engine e(box({0, 0, 0}, {1, 2, 1}), box_refinement(rule));
     e.refine();
     d::MeshState& s = e.s;
     ASSERT_TRUE(d::region_boundaries_are_subfacets(s));
