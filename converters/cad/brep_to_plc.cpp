@@ -60,8 +60,8 @@ constexpr double kPlanarityTolerance = 1e-7;
 // so a polygon whose vertices stray by more (Zylkopf.stp: 1e-8 of the diagonal, healed edges) gives boundary faces
 // off their facet; such a face uses its triangles instead, each planar by construction.
 constexpr double kPolygonPlanarityTolerance = 1e-11;
-// Sized surface mesh: relative deflection of the coarse BRepMesh run whose triangles seed the region search only.
-constexpr double kSeedRelativeDeflection = 0.005;
+// Sized surface mesh: relative deflection of the coarse BRepMesh run whose triangulation gives the bounding box.
+constexpr double kBoxRelativeDeflection = 0.005;
 // Sized surface mesh: the edge length the isotropic remeshing of a face aims at, relative to the face's size. Gmsh's
 // surfaces at -clmax h have edges a little shorter than h on average (cylinder.brep at 5: 221 surface nodes against
 // 161 with a target of h). 0.9 gives Gmsh's volume node count within 0.74-1.25x on tests/data/cad's cylinder at 5
@@ -101,6 +101,7 @@ class PlcBuilder {
     summary.num_faces = faces_.Extent();
     summary.num_edges = edges_.Extent();
     summary.num_vertices = vertices_.Extent();
+    face_triangles_.assign(faces_.Extent() + 1, {});
     for (int f = 1; f <= faces_.Extent(); ++f) {
       double tolerance = BRep_Tool::Tolerance(TopoDS::Face(faces_(f)));
       for (TopExp_Explorer it(faces_(f), TopAbs_EDGE); it.More(); it.Next())
@@ -124,11 +125,10 @@ class PlcBuilder {
 
  private:
   // The sized surface mesh (face_mesh.h): edges at the size field, every face refined and remeshed on its surface,
-  // planar faces then written as polygons with their interior nodes. BRepMesh still runs, coarsely, for the
-  // triangles add_regions() starts its seed search from.
+  // planar faces then written as polygons with their interior nodes. BRepMesh still runs, coarsely: the model's
+  // bounding box (and so the default size) is that of its triangulation.
   CadModel convert_sized() {
-    tessellate(kSeedRelativeDeflection);
-    seed_deflection_ = model_.summary.deflection_used;
+    tessellate(kBoxRelativeDeflection);
     assign_face_sides();
     vertex_ids_.assign(vertices_.Extent() + 1, kNoIndex);
     edge_chains_.assign(edges_.Extent() + 1, {});
@@ -182,6 +182,8 @@ class PlcBuilder {
       double base_tolerance = BRep_Tool::Tolerance(face);
       for (TopExp_Explorer it(face, TopAbs_EDGE); it.More(); it.Next())
         base_tolerance = std::max(base_tolerance, BRep_Tool::Tolerance(face) + BRep_Tool::Tolerance(TopoDS::Edge(it.Current())));
+      for (const SurfaceTriangle& t : triangles[f])
+        face_triangles_[f].push_back({vertices[t[0]], vertices[t[1]], vertices[t[2]]});
       if (planar[f] && add_planar_face(face, f)) {
         add_interior_nodes(triangles[f], boundary_end, model_.plc.facets.back());
         triangles[f].clear();
@@ -213,11 +215,6 @@ class PlcBuilder {
       if (planar[f] && tolerances[f] > 0 && triangles[f].empty()) tolerances[f] += 2 * max_chord_error;
     model_.summary.face_tolerances.assign(tolerances.begin() + 1, tolerances.end());
     model_.summary.deflection_used = max_chord_error;
-    // A region seed must lie inside the PLC, whose facets stray from the CAD surface by at most the chordal error:
-    // twice that from every wall (add_regions measures it). The coarse BRepMesh run only gives the rays' starts, so
-    // its deflection does not count (with it, bottle.brep's 1 mm wall left no seed and the sized surface was
-    // dropped for the tessellation).
-    region_margin_ = 2 * std::max(max_chord_error, 1e-9 * diagonal_);
   }
 
   // The faces' triangles remeshed on their surfaces (face_remesh.cpp, isotropic remeshing towards
@@ -442,7 +439,19 @@ class PlcBuilder {
                                              BRep_Tool::Tolerance(face));
 
     BRepAdaptor_Surface surface(face, Standard_False);
-    if (surface.GetType() == GeomAbs_Plane && add_planar_face(face, f)) return;
+    if (surface.GetType() == GeomAbs_Plane && add_planar_face(face, f)) {
+      // The polygon's region, for the seed search: BRepMesh's triangles, on the chain points at the boundary.
+      for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
+        std::array<int, 3> corners;
+        triangulation->Triangle(t).Get(corners[0], corners[1], corners[2]);
+        SeedTriangle& seed_triangle = face_triangles_[f].emplace_back();
+        for (int k = 0; k < 3; ++k)
+          seed_triangle[k] = node_ids[corners[k]] != kNoIndex
+                                 ? model_.plc.vertices[node_ids[corners[k]]]
+                                 : to_point(triangulation->Node(corners[k]).Transformed(transform));
+      }
+      return;
+    }
 
     for (int i = 1; i <= triangulation->NbNodes(); ++i)
       if (node_ids[i] == kNoIndex) node_ids[i] = add_vertex(to_point(triangulation->Node(i).Transformed(transform)));
@@ -457,6 +466,8 @@ class PlcBuilder {
     remove_flat_triangles(triangles);
     remove_mirrored_pairs(triangles);
     for (const Triangle& t : triangles) {
+      const std::vector<Point3>& v = model_.plc.vertices;
+      face_triangles_[f].push_back({v[t[0]], v[t[1]], v[t[2]]});
       Facet facet;
       facet.polygons.push_back({t[0], t[1], t[2]});
       facet.marker = marker;
@@ -648,15 +659,20 @@ class PlcBuilder {
     }
   }
 
-  // A seed strictly inside each solid (region_seed.cpp), keeping the margin from every wall.
+  // A seed strictly inside the PLC surface of each solid (region_seed.cpp): its faces' triangles.
   void add_regions() {
-    const double margin = region_margin_ > 0 ? region_margin_ : 2 * model_.summary.deflection_used;
     for (int s = 1; s <= solids_.Extent(); ++s) {
-      const std::optional<Point3> seed = region_seed(solids_(s), margin, diagonal_);
+      std::vector<SeedTriangle> surface;
+      std::set<int> seen;
+      for (TopExp_Explorer it(solids_(s), TopAbs_FACE); it.More(); it.Next()) {
+        const int f = faces_.FindIndex(it.Current());
+        if (seen.insert(f).second) surface.insert(surface.end(), face_triangles_[f].begin(), face_triangles_[f].end());
+      }
+      const std::optional<Point3> seed = region_seed(surface, diagonal_);
       if (!seed)
         throw InputError(ErrorCode::DegenerateFacet,
                          "found no point strictly inside Solid" + std::to_string(s) +
-                             " (too thin for the tessellation deflection?)",
+                             " (its faces' triangles do not make a closed surface)",
                          file_);
       model_.plc.regions.push_back({*seed, s, 0});
     }
@@ -672,8 +688,7 @@ class PlcBuilder {
   std::vector<std::vector<double>> edge_params_;  // Sized: curve parameters of the chain's points, by edge number
   std::vector<double> edge_spacing_;              // Sized: length / pieces of each edge as first discretised
   EdgeChain scratch_chain_;                       // Sized: the chain handed to the face mesher
-  double region_margin_ = 0;                      // Sized: distance a region seed keeps from the walls
-  double seed_deflection_ = 0;                    // Sized: deflection of the coarse BRepMesh run for the seeds
+  std::vector<std::vector<SeedTriangle>> face_triangles_;  // by face number: its PLC triangles, for add_regions
   double diagonal_ = 0;
   CadModel model_;
 };

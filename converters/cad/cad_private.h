@@ -6,6 +6,7 @@
 
 #include <TopoDS_Shape.hxx>
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,9 +37,12 @@ TopoDS_Shape read_healed_solids(const std::string& path, const CadOptions& optio
 // Tessellates the solids of `solids` (output of heal_into_solids) and builds the PLC and summary.
 CadModel convert_solids_to_plc(const TopoDS_Shape& solids, const CadOptions& options, const std::string& file);
 
-// A point strictly inside `solid`, more than `margin` from every wall, found from its tessellation (region_seed.cpp);
-// nothing when there is none.
-std::optional<Point3> region_seed(const TopoDS_Shape& solid, double margin, double diagonal);
+// One triangle of a solid's PLC surface, by its corners (a planar facet enters as the triangles of its face mesh).
+using SeedTriangle = std::array<Point3, 3>;
+
+// A point strictly inside the closed surface of `triangles` (one solid's PLC facets), as far from them as a short
+// search finds (region_seed.cpp); nothing when the triangles do not close or no point is found.
+std::optional<Point3> region_seed(const std::vector<SeedTriangle>& triangles, double diagonal);
 
 // Renders an OpenSCAD file with `openscad` and reads the result, repairing only exactly.
 CadModel read_scad_file(const std::string& path, const CadOptions& options);

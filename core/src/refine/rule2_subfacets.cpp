@@ -15,6 +15,7 @@
 //     encroached only by a vertex on an element meeting its facet at an acute angle is left (small_angles.cpp);
 //   - a missing subfacet of four cocircular points is first flipped to the 3D triangulation's diagonal.
 #include <algorithm>
+#include <cmath>
 
 #include "refine/refine_state.h"
 
@@ -57,6 +58,9 @@ KPoint3 Rule2Subfacets::refinement_point(const MeshState& s, const std::array<In
 
 Conflict Rule2Subfacets::conflict(MeshState& s, Index facet, const std::array<Index, 3>& abc,
                                   const KPoint3& center, ConflictZone& cz, Candidates& cand) const {
+  // Three nearly coincident vertices (a runaway near a tiny input angle splits down to rounding) have no centre in
+  // floating point: a NaN point would poison every predicate of the triangulation (bottle.brep at --size 80).
+  if (!std::isfinite(center.x()) || !std::isfinite(center.y()) || !std::isfinite(center.z())) return Conflict::Drop;
   if (policy.walks_to_centres()) {
     // Steiner mode: the first subsegment that the walk from the subfacet to its centre crosses (file comment).
     if (auto uv = subsegment_towards(s, facet, abc, to_point3(center))) {
