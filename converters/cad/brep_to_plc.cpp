@@ -672,7 +672,7 @@ class PlcBuilder {
       if (!seed)
         throw InputError(ErrorCode::DegenerateFacet,
                          "found no point strictly inside Solid" + std::to_string(s) +
-                             " (its faces' triangles do not make a closed surface)",
+                             " (its faces' triangles do not close, or no ray from them found the inside)",
                          file_);
       model_.plc.regions.push_back({*seed, s, 0});
     }
