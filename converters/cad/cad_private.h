@@ -37,6 +37,14 @@ TopoDS_Shape read_healed_solids(const std::string& path, const CadOptions& optio
 // Tessellates the solids of `solids` (output of heal_into_solids) and builds the PLC and summary.
 CadModel convert_solids_to_plc(const TopoDS_Shape& solids, const CadOptions& options, const std::string& file);
 
+// BRepMesh's triangles of one face, by PLC vertex ids, repaired before they become facets (tessellation_repair.cpp).
+// Two triangles on the same three vertices with opposite orientations (a flat fold) are both removed.
+void remove_mirrored_pairs(std::vector<std::array<Index, 3>>& triangles);
+// A triangle whose third vertex lies within `flat` of its longest edge is removed, and the triangle across that
+// edge split at the vertex (the surface stays closed).
+void remove_flat_triangles(std::vector<std::array<Index, 3>>& triangles, const std::vector<Point3>& vertices,
+                           double flat);
+
 // One triangle of a solid's PLC surface, by its corners (a planar facet enters as the triangles of its face mesh).
 using SeedTriangle = std::array<Point3, 3>;
 
