@@ -196,7 +196,7 @@ void pump_slivers(MeshState& s) {
   log_survivors(s, bad, last_end, last_refusal, kImproved, kNotTried);
 }
 
-std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices) {
+std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices, WalkCache* cache) {
   // The bad cells (below the sliver angle, in the domain) among the stars of `around`, worst first.
   struct Bad {
     double angle;
@@ -226,7 +226,7 @@ std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices) {
   std::unordered_map<Index, PumpChoice> walks;
   auto walk = [&](Index v) -> const PumpChoice& {
     auto it = walks.find(v);
-    if (it == walks.end()) it = walks.emplace(v, best_weight(s, v)).first;
+    if (it == walks.end()) it = walks.emplace(v, cache ? cache->walk(s, v) : best_weight(s, v)).first;
     return it->second;
   };
   // The second pass looks only at the stars the first pass's moves changed: every other cell was there, with the

@@ -409,9 +409,22 @@ void add_destroyed_cell(const MeshState& s, Ch3 c, StarScore* score) {
 // sliver, after its own vertices failed). Then a star is acceptable when the sliver is in the zone and the new star
 // beats every cell it destroys (the zone, not only v's old star: the sliver is not in v's star), so the mesh's
 // smallest dihedral angle still cannot drop.
-PumpChoice best_weight(MeshState& s, Index v, const Ch3* target) {
+PumpChoice best_weight(MeshState& s, Index v, const Ch3* target,
+                       std::vector<std::pair<Ch3, std::size_t>>* footprint) {
   PumpChoice choice;
   const Vh3 vh = s.vertices[v].handle;
+  std::vector<Ch3> cells;
+  s.tr.incident_cells(vh, std::back_inserter(cells));
+  std::unordered_map<Ch3, double, CellHash> crit_cache;  // critical weights of the cells across the link
+  // Every return goes through here: the footprint is the zone's cells and those whose critical weights were read.
+  auto done = [&]() -> PumpChoice {
+    if (footprint) {
+      footprint->clear();
+      for (const Ch3& c : cells) footprint->emplace_back(c, c->time_stamp());
+      for (const auto& entry : crit_cache) footprint->emplace_back(entry.first, entry.first->time_stamp());
+    }
+    return choice;
+  };
   const double w0 = vh->point().weight();
   const double f = local_feature_size_at(s, v);
   bool by_omega = false;
@@ -419,13 +432,11 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target) {
   if (by_omega) choice.end = WalkEnd::CapOmega;
   if (!(cap > w0)) {
     choice.end = WalkEnd::NoRoom;
-    return choice;
+    return done();
   }
   const KPoint3 p = s.kpoint(v);
   StarEvaluator evaluator(s, v);
 
-  std::vector<Ch3> cells;
-  s.tr.incident_cells(vh, std::back_inserter(cells));
   bool target_in_zone = target && std::find(cells.begin(), cells.end(), *target) != cells.end();
   // The link: per facet, its sorted ids (kNoIndex sorts last), the critical weight of the cell across it (NaN until
   // computed) and the new cell the evaluator measured over it (null until then). A flat vector, scanned in place: a
@@ -478,17 +489,16 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target) {
   if (!current.valid && current.final) {
     choice.end = WalkEnd::CurrentInvalid;
     choice.refusal = current.refusal;
-    return choice;
+    return done();
   }
   choice.current = current;
   choice.best = current;
-  if (!std::isfinite(current.min_dihedral_deg)) return choice;  // no in-domain cell
+  if (!std::isfinite(current.min_dihedral_deg)) return done();  // no in-domain cell
   StarScore destroyed;  // target mode: the zone's cells
   if (target)
     for (const Ch3& c : cells) add_destroyed_cell(s, c, &destroyed);
   bool found = false;
 
-  std::unordered_map<Ch3, double, CellHash> crit_cache;
   auto next_event = [&](Ch3* cell) {
     double best = std::numeric_limits<double>::infinity();
     for (LinkEntry& entry : link) {
@@ -571,7 +581,25 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target) {
   }
   if (choice.end != WalkEnd::Refused && w < cap) choice.end = WalkEnd::Events;
   choice.improves = (target ? found : better(choice.best, current)) && choice.weight > w0;
-  return choice;
+  return done();
+}
+
+const PumpChoice& WalkCache::walk(MeshState& s, Index v) {
+  auto [it, fresh] = entries_.try_emplace(v);
+  Entry& e = it->second;
+  if (!fresh) {
+    const auto& container = s.tr.tds().cells();
+    const bool holds = std::all_of(e.cells.begin(), e.cells.end(), [&](const std::pair<Ch3, std::size_t>& c) {
+      return container.is_used(c.first) && c.first->time_stamp() == c.second;
+    });
+    if (holds) {
+      ++hits_;
+      return e.choice;
+    }
+  }
+  ++misses_;
+  e.choice = best_weight(s, v, nullptr, &e.cells);
+  return e.choice;
 }
 
 // Re-checks `weight` on CGAL's exact conflict zone and applies it; false (nothing changed) when a check fails or

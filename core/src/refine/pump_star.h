@@ -6,6 +6,8 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "refine/refine_state.h"
@@ -66,7 +68,32 @@ bool current_cell(const MeshState& s, const std::array<Index, 4>& ids, Ch3& c);
 // it (a neighbour of the sliver, after its own vertices failed). Then a star is acceptable when the sliver is in the
 // zone and the new star beats every cell it destroys (the zone, not only v's old star: the sliver is not in v's
 // star), so the mesh's smallest dihedral angle still cannot drop. Changes nothing but caches (f(v), angles).
-PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr);
+// `footprint` (optional): gets the cells the walk read (WalkCache).
+PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr,
+                       std::vector<std::pair<Ch3, std::size_t>>* footprint = nullptr);
+
+// Walks kept across pump_around() calls (sliver insertion pumps again around every point it inserts, and most of
+// the vertices it walks there were walked around an earlier point, with the same star). A walk is kept with its
+// footprint: the cells it read (v's star, the cells its zone grew over and those across the zone's link) and their
+// time stamps (cgal_types.h's WithTimeStamp). A destroyed cell, or a new cell in its place, fails the stamp check,
+// and what else a walk reads changes only with a cell of its footprint: v's weight and its neighbours' (their stars
+// are rebuilt), N(v) (a new neighbour), the subfacets of v's zone (a move or an insertion there). So a walk whose
+// cells all hold gives what walking again would: the same mesh, without the walk.
+class WalkCache {
+ public:
+  // v's walk (best_weight without a target), remembered or walked now.
+  const PumpChoice& walk(MeshState& s, Index v);
+  std::size_t hits() const { return hits_; }
+  std::size_t misses() const { return misses_; }
+
+ private:
+  struct Entry {
+    PumpChoice choice;
+    std::vector<std::pair<Ch3, std::size_t>> cells;
+  };
+  std::unordered_map<Index, Entry> entries_;
+  std::size_t hits_ = 0, misses_ = 0;
+};
 // Re-checks `weight` on CGAL's exact conflict zone and applies it; false (nothing changed) when a check fails or
 // the star is not better. `touched` gets the vertices whose stars changed; a move that changed subfacets is
 // counted in *num_retiled (and in *num_retile_failures when the facet's 2D triangulation could not follow).

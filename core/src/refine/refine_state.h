@@ -322,7 +322,9 @@ void apply_rule4(MeshState& s);
 void pump_slivers(MeshState& s);
 // Pumps again, worst first, the vertices of the cells below the sliver angle among the stars of `vertices` (after
 // an insertion: the new vertex's star), with step 3's caps and checks; a few passes. Returns the moves accepted.
-std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices);
+// `cache` (optional): walks remembered across calls (pump_star.h).
+class WalkCache;
+std::size_t pump_around(MeshState& s, const std::vector<Index>& vertices, WalkCache* cache = nullptr);
 // After pumping and sliver insertion: slivers left, vertices pumped, weight statistics (MeshStats).
 void pumping_statistics(MeshState& s);
 // After step 3 (sliver_insertion.cpp, beyond the paper): inserts points at the slivers that pumping left away from

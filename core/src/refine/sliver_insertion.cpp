@@ -40,9 +40,9 @@
 #include <string>
 #include <tuple>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "qualmesh/quality.h"
+#include "refine/pump_star.h"
 #include "refine/refine_state.h"
 
 namespace qualmesh::detail {
@@ -55,10 +55,6 @@ const Kernel& kernel() {
   static const Kernel k;
   return k;
 }
-
-struct KeyHash {
-  std::size_t operator()(const std::array<Index, 2>& k) const { return std::hash<Index>()(k[0]) * 1000003u ^ k[1]; }
-};
 
 // The quality of a set of in-domain cells: smallest dihedral angle, cells below the sliver angle.
 struct StarQuality {
@@ -98,7 +94,7 @@ double max_volume_of(const MeshState& s, int region) {
 
 // Why a candidate point was refused, in the order evaluate() checks (a later one got further); counted per round
 // for the slivers left without an acceptable point (the -v log).
-enum class Refusal : std::uint8_t {
+enum class PointRefusal : std::uint8_t {
   NotInConflict,         // the point does not destroy the sliver (or is hidden)
   Region,                // the zone leaves the sliver's region or the domain
   SubfacetInside,        // a subfacet would vanish inside the zone
@@ -115,53 +111,73 @@ constexpr const char* kRefusalNames[] = {"not-in-conflict", "region",    "subfac
                                          "lost-subsegment", "weight-cap", "bad-cell",        "radius-edge",
                                          "not-better",      "few-removed"};
 
-// Does p's conflict zone (the cells connected to `start` whose power sphere p is inside, with CGAL's perturbation:
-// the zone find_conflicts returns) hold a cell that is infinite or of another region? Walked by hand so that it
-// stops at the first such cell: a candidate beside a flat boundary sees every hull facet of that side (all infinite
-// cells in conflict), and CGAL's full zone of it cost most of the pass (a slab 1 x 1 x 0.005: 80% of the run in
-// find_conflicts here). Same answer as the Region test over find_conflicts' cells, so the same mesh.
-bool zone_leaves_region(const MeshState& s, Ch3 start, const KWeightedPoint3& wp, int region) {
-  std::vector<Ch3> stack{start};
-  std::unordered_set<Ch3, CellHash> seen{start};
-  while (!stack.empty()) {
-    const Ch3 c = stack.back();
-    stack.pop_back();
-    if (s.tr.is_infinite(c) || c->info().region != region) return true;
+// p's conflict zone from `start` (the cells connected to it whose power sphere p is inside, with CGAL's
+// perturbation: the cells find_conflicts returns), its boundary facets (seen from inside) and its internal facets
+// (each once). False, as soon as it is known, when the zone holds a cell that is infinite or of another region: a
+// candidate beside a flat boundary sees every hull facet of that side (all infinite cells in conflict), and CGAL's
+// full zone of it cost most of the pass (a slab 1 x 1 x 0.005: 80% of the run in find_conflicts). One walk, marked
+// with the cells' conflict flags (cleared before returning) as find_conflicts marks them: the candidates of a sliver
+// are 29 zones each, and walking each once for the region and again in find_conflicts, with a hash set of the cells
+// seen, was a third of pump carter's sliver insertion. The cells come in another order than find_conflicts', which
+// evaluate() does not depend on; the point inserted gets CGAL's zone (insert_at_sliver), so the mesh is the same.
+bool conflict_zone(const MeshState& s, Ch3 start, const KWeightedPoint3& wp, int region, std::vector<Ch3>& cells,
+                   std::vector<Facet3>& boundary, std::vector<Facet3>& internal) {
+  cells.assign(1, start);
+  boundary.clear();
+  internal.clear();
+  start->tds_data().mark_in_conflict();
+  bool inside = !s.tr.is_infinite(start) && start->info().region == region;
+  for (std::size_t i = 0; i < cells.size() && inside; ++i) {
+    const Ch3 c = cells[i];
     for (int k = 0; k < 4; ++k) {
       const Ch3 n = c->neighbor(k);
-      if (seen.count(n) || s.tr.side_of_power_sphere(n, wp, true) != CGAL::ON_BOUNDED_SIDE) continue;
-      seen.insert(n);
-      stack.push_back(n);
+      if (!n->tds_data().is_in_conflict()) {
+        if (s.tr.side_of_power_sphere(n, wp, true) != CGAL::ON_BOUNDED_SIDE) {
+          boundary.emplace_back(c, k);
+          continue;
+        }
+        n->tds_data().mark_in_conflict();
+        cells.push_back(n);
+        if (s.tr.is_infinite(n) || n->info().region != region) {
+          inside = false;
+          break;
+        }
+      }
+      // Seen from both sides (each cell of the zone is walked once it is marked): kept from the older cell's.
+      if (c->time_stamp() < n->time_stamp()) internal.emplace_back(c, k);
     }
   }
-  return false;
+  for (const Ch3& c : cells) c->tds_data().clear();
+  return inside;
 }
 
 // The smallest dihedral angle and radius-edge ratio of existing cells, measured once per sliver: the conflict
 // zones of a sliver's candidates overlap, and nothing changes while they are evaluated.
 using CellMemo = std::unordered_map<Ch3, std::pair<double, double>, CellHash>;
 
+// evaluate()'s working vectors, kept across the candidates of a sliver.
+struct Scratch {
+  std::vector<Facet3> internal;
+  std::vector<Index> link_vertices;
+  std::vector<std::array<Index, 2>> link_edges;
+};
+
 // Checks candidate p against the sliver `sliver` (see the file comment); fills `out` when p is acceptable
-// (Refusal::None). A candidate that cannot remove `min_removed` cells below the sliver angle (its zone holds fewer,
+// (PointRefusal::None). A candidate that cannot remove `min_removed` cells below the sliver angle (its zone holds fewer,
 // or its new cells already leave fewer removed) is refused as FewRemoved as soon as that is known: the round would
 // not insert it, so the mesh is the same as with every check run (only the -v log's refusal counts differ).
-Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t min_removed, Candidate& out,
-                 CellMemo& memo) {
+PointRefusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t min_removed, Candidate& out,
+                      CellMemo& memo, Scratch& scratch) {
   const KWeightedPoint3 wp(p, 0);
   const int region = sliver->info().region;
-  // Destroys the sliver; then the zone is found from it.
-  if (s.tr.side_of_power_sphere(sliver, wp) != CGAL::ON_BOUNDED_SIDE) return Refusal::NotInConflict;
-  if (zone_leaves_region(s, sliver, wp, region)) return Refusal::Region;
-  out.cells.clear();
-  out.boundary.clear();
-  std::vector<Facet3> internal;
-  s.tr.find_conflicts(wp, sliver, std::back_inserter(out.boundary), std::back_inserter(out.cells),
-                      std::back_inserter(internal));
-  if (out.cells.empty() || out.boundary.empty()) return Refusal::NotInConflict;
+  // Destroys the sliver; then the zone is found from it, in one region inside the domain.
+  if (s.tr.side_of_power_sphere(sliver, wp) != CGAL::ON_BOUNDED_SIDE) return PointRefusal::NotInConflict;
+  std::vector<Facet3>& internal = scratch.internal;
+  if (!conflict_zone(s, sliver, wp, region, out.cells, out.boundary, internal)) return PointRefusal::Region;
+  if (out.boundary.empty()) return PointRefusal::NotInConflict;
   StarQuality destroyed;
   double destroyed_max_radius_edge = 0;
   for (const Ch3& c : out.cells) {
-    if (s.tr.is_infinite(c) || c->info().region != region) return Refusal::Region;  // one region, inside the domain
     auto [it, fresh] = memo.try_emplace(c);
     if (fresh) {
       const TetQuality tq = tet_quality(s.point(c->vertex(0)->info()), s.point(c->vertex(1)->info()),
@@ -171,32 +187,37 @@ Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t min_rem
     add_cell(s, it->second.first, &destroyed);
     destroyed_max_radius_edge = std::max(destroyed_max_radius_edge, it->second.second);
   }
-  if (destroyed.num_bad < min_removed) return Refusal::FewRemoved;
+  if (destroyed.num_bad < min_removed) return PointRefusal::FewRemoved;
   // No subfacet inside the zone.
   for (const Facet3& f : internal)
-    if (face_subfacet(s, f.first, f.second) != kNoIndex) return Refusal::SubfacetInside;
-  // Link (boundary) vertices and edges.
-  std::unordered_set<Index> link_vertices;
-  std::unordered_set<std::array<Index, 2>, KeyHash> link_edges;
+    if (face_subfacet(s, f.first, f.second) != kNoIndex) return PointRefusal::SubfacetInside;
+  // Link (boundary) vertices and edges, sorted (a zone has a few dozen).
+  std::vector<Index>& link_vertices = scratch.link_vertices;
+  std::vector<std::array<Index, 2>>& link_edges = scratch.link_edges;
+  link_vertices.clear();
+  link_edges.clear();
   for (const Facet3& f : out.boundary) {
     Index ids[3];
     for (int k = 0; k < 3; ++k) ids[k] = f.first->vertex((f.second + 1 + k) & 3)->info();
     for (int k = 0; k < 3; ++k) {
-      link_vertices.insert(ids[k]);
-      link_edges.insert({std::min(ids[k], ids[(k + 1) % 3]), std::max(ids[k], ids[(k + 1) % 3])});
+      link_vertices.push_back(ids[k]);
+      link_edges.push_back({std::min(ids[k], ids[(k + 1) % 3]), std::max(ids[k], ids[(k + 1) % 3])});
     }
   }
+  std::sort(link_vertices.begin(), link_vertices.end());
+  std::sort(link_edges.begin(), link_edges.end());
   // No vertex hidden; no subsegment lost.
   for (const Ch3& c : out.cells) {
     Index ids[4];
     for (int k = 0; k < 4; ++k) {
       ids[k] = c->vertex(k)->info();
-      if (!link_vertices.count(ids[k])) return Refusal::Hidden;
+      if (!std::binary_search(link_vertices.begin(), link_vertices.end(), ids[k])) return PointRefusal::Hidden;
     }
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b) {
         if (subsegment_of(s, ids[a], ids[b]) == kNoIndex) continue;
-        if (!link_edges.count({std::min(ids[a], ids[b]), std::max(ids[a], ids[b])})) return Refusal::LostSubsegment;
+        const std::array<Index, 2> edge{std::min(ids[a], ids[b]), std::max(ids[a], ids[b])};
+        if (!std::binary_search(link_edges.begin(), link_edges.end(), edge)) return PointRefusal::LostSubsegment;
       }
   }
   // Weight caps of the vertices around p: those of the link and those across it.
@@ -207,9 +228,9 @@ Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t min_rem
   };
   for (const Facet3& f : out.boundary) {
     const Ch3 n = f.first->neighbor(f.second);
-    if (!cap_kept(n->vertex(n->index(f.first)))) return Refusal::WeightCap;
+    if (!cap_kept(n->vertex(n->index(f.first)))) return PointRefusal::WeightCap;
     for (int k = 1; k < 4; ++k)
-      if (!cap_kept(f.first->vertex((f.second + k) & 3))) return Refusal::WeightCap;
+      if (!cap_kept(f.first->vertex((f.second + k) & 3))) return PointRefusal::WeightCap;
   }
   // The new cells: positive, within rho0 and the size field, and better than what they replace.
   const double max_volume = max_volume_of(s, region);
@@ -221,11 +242,11 @@ Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t min_rem
       kq[k] = k == f.second ? p : f.first->vertex(k)->point().point();
       q[k] = to_point3(kq[k]);
     }
-    if (kernel().orientation_3_object()(kq[0], kq[1], kq[2], kq[3]) != CGAL::POSITIVE) return Refusal::BadCell;
+    if (kernel().orientation_3_object()(kq[0], kq[1], kq[2], kq[3]) != CGAL::POSITIVE) return PointRefusal::BadCell;
     if (s.params.sq_max_edge > 0)
       for (int k = 0; k < 4; ++k)
-        if (k != f.second && sq_dist(p, kq[k]) > s.params.sq_max_edge) return Refusal::BadCell;
-    if (max_volume > 0 && CGAL::volume(kq[0], kq[1], kq[2], kq[3]) > max_volume) return Refusal::BadCell;
+        if (k != f.second && sq_dist(p, kq[k]) > s.params.sq_max_edge) return PointRefusal::BadCell;
+    if (max_volume > 0 && CGAL::volume(kq[0], kq[1], kq[2], kq[3]) > max_volume) return PointRefusal::BadCell;
     const TetQuality tq = tet_quality(q[0], q[1], q[2], q[3]);
     if (!(tq.radius_edge <= s.params.radius_edge_bound)) {
       // As for pumping: above rho0 only where an acute input angle forces the shortest edge (not one of p's), and
@@ -236,16 +257,16 @@ Refusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t min_rem
           if (sq_dist(kq[a], kq[b]) < sq_dist(kq[ea], kq[eb])) ea = a, eb = b;
       if (ea == f.second || eb == f.second || !(tq.radius_edge <= destroyed_max_radius_edge) ||
           !shortest_edge_forced_by_acute_angle(s, f.first->vertex(ea)->info(), f.first->vertex(eb)->info()))
-        return Refusal::RadiusEdge;
+        return PointRefusal::RadiusEdge;
     }
     add_cell(s, tq.min_dihedral_deg, &out.quality);
-    if (out.quality.num_bad + min_removed > destroyed.num_bad) return Refusal::FewRemoved;
+    if (out.quality.num_bad + min_removed > destroyed.num_bad) return PointRefusal::FewRemoved;
   }
-  if (!(out.quality.min_dihedral_deg > destroyed.min_dihedral_deg)) return Refusal::NotBetter;
-  if (!(out.quality.num_bad < destroyed.num_bad)) return Refusal::NotBetter;
+  if (!(out.quality.min_dihedral_deg > destroyed.min_dihedral_deg)) return PointRefusal::NotBetter;
+  if (!(out.quality.num_bad < destroyed.num_bad)) return PointRefusal::NotBetter;
   out.num_removed = destroyed.num_bad - out.quality.num_bad;
   out.point = p;
-  return Refusal::None;
+  return PointRefusal::None;
 }
 
 // The candidate points of the file comment around sliver c's orthocentre.
@@ -297,15 +318,16 @@ std::vector<Bad> slivers_worst_first(const MeshState& s, std::size_t* num_away) 
 
 // Inserts the best candidate of `c` that removes at least `min_removed` cells below the sliver angle; otherwise
 // returns the furthest refusal among the candidates. `num_in_balls` counts the boundary elements whose diametral
-// balls hold the inserted point.
-Refusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std::size_t* num_in_balls) {
+// balls hold the inserted point. The new star is pumped again with `walks`.
+PointRefusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std::size_t* num_in_balls, WalkCache& walks) {
   Candidate best, trial;
   bool found = false;
-  Refusal furthest = Refusal::NotInConflict;
+  PointRefusal furthest = PointRefusal::NotInConflict;
   CellMemo memo;
+  Scratch scratch;
   for (const KPoint3& p : candidate_points(c)) {
-    const Refusal r = evaluate(s, c, p, min_removed, trial, memo);
-    if (r != Refusal::None) {
+    const PointRefusal r = evaluate(s, c, p, min_removed, trial, memo, scratch);
+    if (r != PointRefusal::None) {
       furthest = std::max(furthest, r);
       continue;
     }
@@ -315,13 +337,19 @@ Refusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std::size
     }
   }
   if (!found) return furthest;
-  if (best.num_removed < min_removed) return Refusal::FewRemoved;
+  if (best.num_removed < min_removed) return PointRefusal::FewRemoved;
   std::vector<Index> star;
   for (const Facet3& f : best.boundary)
     for (int k = 1; k < 4; ++k) star.push_back(f.first->vertex((f.second + k) & 3)->info());
   std::sort(star.begin(), star.end());
   star.erase(std::unique(star.begin(), star.end()), star.end());
   const int region = c->info().region;
+  // CGAL's zone of the point, in find_conflicts' order (conflict_zone's is another): the insertion then destroys and
+  // creates the cells in the same order as before conflict_zone, so the mesh is the same.
+  best.cells.clear();
+  best.boundary.clear();
+  s.tr.find_conflicts(KWeightedPoint3(best.point, 0), c, std::back_inserter(best.boundary),
+                      std::back_inserter(best.cells), CGAL::Emptyset_iterator());
   const Index w = insert_volume_vertex(s, to_point3(best.point), best.cells, best.boundary, region);
   // The pumping cap's N(v): the new vertex's, and its neighbours' (p may now be their nearest vertex).
   s.sq_nearest.resize(s.vertices.size(), std::numeric_limits<double>::infinity());
@@ -340,8 +368,8 @@ Refusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std::size
   s.rule2.queue.clear();
   s.rule3.queue.clear();
   star.push_back(w);
-  pump_around(s, star);
-  return Refusal::None;
+  pump_around(s, star, &walks);
+  return PointRefusal::None;
 }
 
 template <std::size_t N>
@@ -360,10 +388,11 @@ void insert_at_slivers(MeshState& s) {
   const auto limit = std::size_t((1 + s.params.sliver_insertion_budget) * double(base));
   std::size_t total = 0, refused = 0;
   bool budget_spent = false;
+  WalkCache walks;
   for (int round = 0; round < kMaxRounds && !budget_spent; ++round) {
     std::size_t inserted = 0, in_balls = 0;
     refused = 0;
-    std::array<std::size_t, std::size_t(Refusal::None)> why{};
+    std::array<std::size_t, std::size_t(PointRefusal::None)> why{};
     std::size_t num_away = 0;
     const std::vector<Bad> bad = slivers_worst_first(s, &num_away);
     for (const Bad& b : bad) {
@@ -375,8 +404,8 @@ void insert_at_slivers(MeshState& s) {
       if (!s.tr.is_cell(s.vertices[b.ids[0]].handle, s.vertices[b.ids[1]].handle, s.vertices[b.ids[2]].handle,
                         s.vertices[b.ids[3]].handle, c))
         continue;  // gone with an earlier insertion
-      const Refusal r = insert_at_sliver(s, c, std::size_t(std::max(1, 3 - round)), &in_balls);
-      if (r == Refusal::None) {
+      const PointRefusal r = insert_at_sliver(s, c, std::size_t(std::max(1, 3 - round)), &in_balls, walks);
+      if (r == PointRefusal::None) {
         ++inserted;
       } else {
         ++refused;
@@ -393,6 +422,8 @@ void insert_at_slivers(MeshState& s) {
                (budget_spent ? " (vertex budget spent)" : "") + refusal_summary(why));
     if (inserted == 0 && round >= 2) break;  // the rounds asking for more than one removal may insert nothing
   }
+  s.log_line("sliver insertion: " + std::to_string(walks.misses()) + " vertex walks, " +
+             std::to_string(walks.hits()) + " reused (their cells unchanged)");
   s.stats.num_sliver_insertions = total;
   s.stats.num_sliver_insertions_refused = refused;
 }
