@@ -310,20 +310,11 @@ class FaceRemesher {
   }
 
   // The surface parameters of the point nearest to p, a point of a triangle with corners v: OpenCASCADE's point
-  // inversion started from a corner's parameters (a local search, against a global one whose sampling grid took 70%
-  // of wrenchnut.stp's surface meshing). A corner without parameters yet is a fixed node (a chain's, never
-  // projected), on the surface already: its parameters are found once by the global search, and kept apart from
-  // the projected nodes' (project() starts from those).
+  // inversion started from a corner's parameters when one has some (a local search, against a global one whose
+  // sampling grid took 70% of wrenchnut.stp's surface meshing), else the global one.
   gp_Pnt2d parameters_near(const K::Point_3& p, const std::array<VertexD, 3>& v) const {
     for (VertexD w : v)
       if (has_uv_[w]) return analysis_->NextValueOfUV(uv_[w], to_gp(p), precision_);
-    for (VertexD w : v) {
-      if (!vertex_fixed_[w]) continue;
-      auto it = fixed_uv_.find(w);
-      if (it == fixed_uv_.end())
-        it = fixed_uv_.emplace(w, analysis_->ValueOfUV(to_gp(mesh_.point(w)), precision_)).first;
-      return analysis_->NextValueOfUV(it->second, to_gp(p), precision_);
-    }
     return analysis_->ValueOfUV(to_gp(p), precision_);
   }
 
@@ -468,9 +459,6 @@ class FaceRemesher {
   double floor_angle_deg_ = 0;  // the refinement's smallest corner
   BRepAdaptor_Surface surface_;
   Handle(ShapeAnalysis_Surface) analysis_;
-  // Parameters of fixed nodes on the surface, found when a triangle of three fixed nodes is measured
-  // (parameters_near); a fixed node never moves, so they hold through every round.
-  mutable std::map<VertexD, gp_Pnt2d> fixed_uv_;
   double precision_;
 };
 
