@@ -413,8 +413,7 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target,
                        std::vector<std::pair<Ch3, std::size_t>>* footprint) {
   PumpChoice choice;
   const Vh3 vh = s.vertices[v].handle;
-  std::vector<Ch3> cells;
-  s.tr.incident_cells(vh, std::back_inserter(cells));
+  std::vector<Ch3> cells;  // v's star, then the zone as it grows
   std::unordered_map<Ch3, double, CellHash> crit_cache;  // critical weights of the cells across the link
   // Every return goes through here: the footprint is the zone's cells and those whose critical weights were read.
   auto done = [&]() -> PumpChoice {
@@ -432,8 +431,10 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target,
   if (by_omega) choice.end = WalkEnd::CapOmega;
   if (!(cap > w0)) {
     choice.end = WalkEnd::NoRoom;
+    if (footprint) s.tr.incident_cells(vh, std::back_inserter(cells));  // N(v) and v's weight live in its star
     return done();
   }
+  s.tr.incident_cells(vh, std::back_inserter(cells));
   const KPoint3 p = s.kpoint(v);
   StarEvaluator evaluator(s, v);
 
