@@ -116,16 +116,23 @@ std::function<bool()> make_cancel(const MeshLimits& limits) {
 
 bool report_limit_stop(const std::string& file, const MeshOptions& options, const MeshLimits& limits,
                        const MeshResult& result) {
+  const char* partial = limits.allow_partial
+                            ? "the partial mesh is written (--allow-partial); it may not conform to the input"
+                            : "nothing written (--allow-partial writes the partial mesh)";
+  if (result.status == MeshStatus::PrecisionExhausted) {
+    std::cerr << "qualmesh: " << file << ": error[precision]: refinement reached the limit of double precision ("
+              << result.message << "), with every fallback; the input has detail far below the requested size that "
+              << "this size cannot resolve (a finer --size often does; `qualmesh info` lists the small angles): "
+              << partial << "\n";
+    return true;
+  }
   std::string what;
   if (result.status == MeshStatus::Cancelled) what = *limits.stopped_by;
   else if (result.status == MeshStatus::VertexLimitReached)
     what = "the vertex limit (--max-vertices " + std::to_string(options.max_vertices) + ")";
   else return false;
   std::cerr << "qualmesh: " << file << ": error[resource]: " << what << " stopped meshing at "
-            << result.mesh.points.size() << " vertices, " << result.mesh.tets.size() << " tets: "
-            << (limits.allow_partial ? "the partial mesh is written (--allow-partial); it may not conform to the input"
-                                     : "nothing written (--allow-partial writes the partial mesh)")
-            << "\n";
+            << result.mesh.points.size() << " vertices, " << result.mesh.tets.size() << " tets: " << partial << "\n";
   return true;
 }
 

@@ -51,7 +51,7 @@ bool check_size_estimate(const Plc& plc, const std::string& file, const MeshOpti
 std::function<bool()> make_cancel(const MeshLimits& limits);
 
 // After mesh_plc: when a limit stopped it, the message on stderr and true (the caller exits kExitResource, writing
-// the mesh only with --allow-partial).
+// the mesh only with --allow-partial). MeshStatus::PrecisionExhausted counts as one: error[precision].
 bool report_limit_stop(const std::string& file, const MeshOptions& options, const MeshLimits& limits,
                        const MeshResult& result);
 

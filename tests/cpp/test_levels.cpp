@@ -14,7 +14,9 @@
 //   - under the Steiner policy, region labels that cross no subfacet are flooded again (reflood_regions);
 //   - boundary points projected onto a curved surface (MeshOptions::project_to_boundary) land on it;
 //   - the split floor keeps small encroached elements, and splits below it past a budget stop a projected run; it is
-//     the user's or the rounding floor, whichever is larger.
+//     the user's or the rounding floor, whichever is larger;
+//   - a boundary point whose place in a facet's 2D triangulation is already a vertex is refused, and the stop at the
+//     limit of double precision ends refinement.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -633,4 +635,63 @@ TEST(Levels, SplitsBelowTheFloorPastTheBudgetStopAProjectedRun) {
     EXPECT_EQ(e.s.projection_runaway, projected);
     EXPECT_EQ(e.s.vertex_limit_reached, projected);
   }
+}
+
+// Refinement at the limit of double precision (MeshState::stop_at_precision): a boundary point whose place in a
+// facet's 2D triangulation is already a vertex cannot be inserted there. CGAL's insert would return the old vertex
+// and QualMesh would overwrite its id: bottle.brep at --size 80 crashed in CGAL's flips after 28 such merges.
+// facet_accepts_point() says so before anything is inserted, and Rule 2 then stops every stage.
+TEST(Levels, FacetPointOnATwoDimensionalVertexIsRefusedAndStopsRefinement) {
+  MeshOptions options;
+  options.max_edge_length = 0.5;
+  options.pump = false;
+  Engine e(box({0, 0, 0}, {3, 3, 1}), options);
+  e.refine();
+  d::MeshState& s = e.s;
+  const Index bottom = 0;  // z = 0
+  std::vector<std::array<Index, 3>> faces;
+  d::collect_subfacets(s, bottom, faces);
+  std::optional<std::array<Index, 3>> inner;
+  for (const auto& f : faces) {
+    bool far = true;
+    for (Index v : f) far = far && s.point(v)[0] > 1 && s.point(v)[0] < 2 && s.point(v)[1] > 1 && s.point(v)[1] < 2;
+    if (far) inner = f;
+  }
+  ASSERT_TRUE(inner);
+  const Point3 corner = s.point((*inner)[0]);
+  d::VertexRecord r;
+  r.kind = d::VertexKind::Facet;
+  r.host = bottom;
+  r.point = {corner[0], corner[1], 1e-9};  // another point in 3D, the same one in the facet's plane
+  EXPECT_FALSE(d::facet_accepts_point(s, r));
+  r.point = d::to_point3(s.rule2.refinement_point(s, *inner));
+  EXPECT_TRUE(d::facet_accepts_point(s, r));
+
+  // A segment point on its chain neighbour, at its neighbour's parameter: no place on the constrained edge.
+  const Index ab = e.segment(0, 1);
+  ASSERT_NE(ab, kNoIndex);
+  d::VertexRecord q;
+  q.kind = d::VertexKind::Segment;
+  q.host = ab;
+  q.prev = s.complex.segments[ab].a;
+  q.next = d::next_on_segment(s, ab, q.prev);
+  q.t = d::segment_parameter(s, ab, q.prev);
+  q.point = s.point(q.prev);
+  EXPECT_FALSE(d::facet_accepts_point(s, q));
+  q.t = 0.5 * (d::segment_parameter(s, ab, q.prev) + d::segment_parameter(s, ab, q.next));
+  for (int k = 0; k < 3; ++k) q.point[k] = 0.5 * (s.point(q.prev)[k] + s.point(q.next)[k]);
+  EXPECT_TRUE(d::facet_accepts_point(s, q));
+
+  // The stop: the first reason is kept, and the scheduler takes nothing more from the queues.
+  s.stop_at_precision("facet 0", 1e-15, r.point);
+  s.stop_at_precision("segment 3", 1e-16, q.point);
+  EXPECT_TRUE(s.vertex_limit_reached);
+  EXPECT_NE(s.precision_stop.find("an element of facet 0 (size 1e-15) at ("), std::string::npos)
+      << s.precision_stop;
+  EXPECT_EQ(s.precision_stop.find("segment 3"), std::string::npos) << s.precision_stop;
+  const std::size_t vertices = s.vertices.size();
+  s.rule2.push({bottom, *inner, false, {}, true});
+  d::run_refinement(s, true);
+  EXPECT_EQ(s.vertices.size(), vertices);
+  EXPECT_EQ(s.rule2.queue.size(), 1u);
 }

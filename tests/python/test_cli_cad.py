@@ -100,6 +100,27 @@ def test_cad_meshing_keeps_the_relaxed_rule_under_the_split_floor(run_qualmesh, 
     assert check.returncode == 0, check.stdout[:2000]
 
 
+def test_refinement_at_the_limit_of_double_precision_stops_with_exit_4_and_writes_nothing(run_qualmesh, tmp_path):
+    """bottle.brep at --size 80 (coarser than the bottle): the sized surface keeps the thread's sliver facets (0.9 deg
+    at (7.445, -0.904, 53.726)), and Rules 1-2 split there down to 1e-15. A point then fell on a vertex of a facet's
+    2D triangulation; QualMesh overwrote that vertex's id and CGAL crashed (exit 139, session 33). Now the point is
+    refused before it is inserted, every fallback is tried, and the CLI says where it stopped: error[precision],
+    exit 4 (a limit, like the others of `mesh`), nothing written."""
+    bottle = shared_file("data/cad/bottle.brep")
+    out = tmp_path / "bottle.vtu"
+    proc = run_qualmesh("mesh", bottle, "-o", out, "--size", 80, "-v", timeout=600)
+    assert proc.returncode == 4, (proc.returncode, proc.stderr[-3000:])
+    assert "error[precision]" in proc.stderr and "bottle.brep" in proc.stderr, proc.stderr[-3000:]
+    m = re.search(r"error\[precision\].*\(size ([0-9.e+-]+)\) at \(([-0-9.e+]+), ([-0-9.e+]+), ([-0-9.e+]+)\)",
+                  proc.stderr)
+    assert m, proc.stderr[-3000:]
+    assert float(m.group(1)) < 1e-9
+    where = [float(m.group(k)) for k in (2, 3, 4)]
+    assert max(abs(a - b) for a, b in zip(where, (7.445, -0.904, 53.726))) < 0.01, where
+    assert "meshing again without projecting" in proc.stderr and "meshing again with the paper's rule" in proc.stderr
+    assert not out.exists()
+
+
 @pytest.mark.parametrize("plugin_kind", ["missing", "not-a-library"])
 def test_unloadable_cad_plugin_is_refused_with_exit_code_2_naming_its_path(qualmesh_exe, tmp_path, plugin_kind):
     """The CLI dlopens its CAD front end on the first CAD input, from $QUALMESH_CAD_PLUGIN when set (nowhere else).

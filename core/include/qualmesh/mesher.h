@@ -234,6 +234,8 @@ enum class MeshStatus {
   VertexLimitReached,  // MeshOptions::max_vertices stopped refinement; the mesh is conforming only if the
                        // boundary stage had finished
   Cancelled,           // MeshOptions::cancel returned true; the same partial mesh as at the vertex limit
+  PrecisionExhausted,  // Rules 1-2 split an element down to the limit of double precision (a split point fell on a
+                       // vertex), with every fallback; the partial mesh does not conform (MeshResult::message)
 };
 
 struct MeshResult {
@@ -247,6 +249,7 @@ struct MeshResult {
   // facets incident to it. Rule 3 does not split these (the short edge is forced by the input).
   std::vector<std::uint8_t> tet_touches_acute_angle;
   MeshStats stats;
+  std::string message;  // PrecisionExhausted: where refinement stopped (the element, its size, the rule)
 };
 
 // Thrown by mesh_plc() when MeshOptions::cancel stops it before the input vertices are triangulated (no partial mesh).

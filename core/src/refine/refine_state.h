@@ -124,6 +124,14 @@ struct MeshState {
     if (++below_floor_splits > kBelowFloorSplitBudget + plc->vertices.size() && options.project_to_boundary)
       projection_runaway = vertex_limit_reached = true;
   }
+  // Non-empty: why refinement stopped at the limit of double precision. A Rule 1-2 point whose place in a facet's
+  // 2D triangulation is already a vertex (facet_accepts_point) cannot be inserted, and the element it was to split
+  // stays encroached or missing, so every stage stops as at the vertex limit; mesh_plc() meshes again with its next
+  // fallback, and the last one returns MeshStatus::PrecisionExhausted.
+  std::string precision_stop;
+  // Records the first such stop: `element` names the input element ("segment 291"), `size` the length (radius) of
+  // its subsegment (subfacet), `where` the split point (subfacets.cpp).
+  void stop_at_precision(const std::string& element, double size, const Point3& where);
   std::size_t cancel_polls = 0;
 
   // Polls MeshOptions::cancel every 64 calls; true (and vertex_limit_reached) once it has said stop.
@@ -217,7 +225,13 @@ void build_facet_meshes(MeshState& s);
 // Facets that contain all three vertices, checked against their 2D triangulations: the facet of which (a, b, c) is
 // an in-domain subfacet, or kNoIndex.
 Index subfacet_of(const MeshState& s, Index a, Index b, Index c);
-// Inserts vertex w (on facet f, or on a segment of f) into f's 2D triangulation; returns the new subfacets.
+// Whether a boundary point `r` (kind Segment, with its chain neighbours prev and next, or kind Facet) has a place in
+// the 2D triangulation of every facet it lies on: false when its location there is already a vertex (refinement at
+// the limit of double precision), or when a segment point's neighbours are not joined by an edge. Rules 1-2 ask
+// before inserting (MeshState::stop_at_precision). `near`: a vertex of r's facet near it, where the 2D walk starts.
+bool facet_accepts_point(const MeshState& s, const VertexRecord& r, Index near = kNoIndex);
+// Inserts vertex w (on facet f, or on a segment of f) into f's 2D triangulation; returns the new subfacets. Throws
+// std::logic_error where facet_accepts_point() is false.
 void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::array<Index, 3>>* new_faces);
 // Is (a, b, c) an in-domain subfacet of f?
 bool is_subfacet(const MeshState& s, Index facet, Index a, Index b, Index c);

@@ -7,10 +7,12 @@
 // (EncroachmentPolicy: the paper's "every vertex", or Steiner vertices only).
 //
 // A subsegment's split point is never rejected (Rule 1 is the first level): its conflict test only drops a point
-// that rounding put on a vertex. Entries are checked when popped (still consecutive on the segment, still
+// that rounding put on a vertex, and a point whose place in a facet's 2D triangulation is a vertex stops refinement
+// (MeshState::stop_at_precision). Entries are checked when popped (still consecutive on the segment, still
 // encroached or forced), so stale ones cost nothing.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "refine/refine_state.h"
 
@@ -91,6 +93,19 @@ void Rule1Subsegments::refine_one(MeshState& s) {
   }
   double t = 0;
   const Point3 p = refinement_point(s, e.segment, e.u, e.v, &t);
+  VertexRecord r;  // the split point as insert_vertex will see it
+  r.point = p;
+  r.kind = VertexKind::Segment;
+  r.host = e.segment;
+  r.t = t;
+  r.prev = e.u;
+  r.next = e.v;
+  if (next_on_segment(s, e.segment, r.prev) != r.next) std::swap(r.prev, r.next);
+  if (!facet_accepts_point(s, r)) {
+    s.stop_at_precision("segment " + std::to_string(e.segment),
+                        std::sqrt(CGAL::squared_distance(s.kpoint(e.u), s.kpoint(e.v))), p);
+    return;
+  }
   ConflictZone cz;
   if (conflict(s, p, hint_of(s, e.u), cz) != Conflict::None) return;
   Candidates cand;

@@ -16,6 +16,7 @@
 //   - a missing subfacet of four cocircular points is first flipped to the 3D triangulation's diagonal.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "refine/refine_state.h"
 
@@ -111,6 +112,16 @@ bool split_subfacet(MeshState& s, Rule2Subfacets& level, Index facet, const std:
   const Conflict conflict = level.conflict(s, facet, abc, center, cz, cand);
   if (conflict == Conflict::SplitSubsegment) ++s.stats.num_rejected_circumcenters;
   if (conflict != Conflict::None) return false;
+  VertexRecord r;  // the centre as insert_vertex will see it
+  r.point = to_point3(center);
+  r.kind = VertexKind::Facet;
+  r.host = facet;
+  if (!facet_accepts_point(s, r, abc[0])) {
+    s.stop_at_precision("facet " + std::to_string(facet),
+                        std::sqrt(CGAL::squared_radius(s.kpoint(abc[0]), s.kpoint(abc[1]), s.kpoint(abc[2]))),
+                        r.point);
+    return false;
+  }
   if (s.params.subfacet_below_floor(CGAL::squared_radius(s.kpoint(abc[0]), s.kpoint(abc[1]), s.kpoint(abc[2]))))
     s.count_below_floor_split();  // a missing subfacet below the floor
   const Index w = add_vertex(s, to_point3(center), VertexKind::Facet, facet);

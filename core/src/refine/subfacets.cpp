@@ -11,6 +11,8 @@
 // Lemma 3.5 (projection): subfacet_containing_projection() locates the orthogonal projection of a point in the 2D
 // triangulation.
 #include <algorithm>
+#include <cstdio>
+#include <string>
 #include <unordered_set>
 
 #include "qualmesh/error.h"
@@ -206,38 +208,89 @@ bool splits_edge_without_fold(const Cdt2& cdt, Fh2 fh, int i, const KPoint2& p) 
 
 }  // namespace
 
-void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::array<Index, 3>>* new_faces) {
-  FacetMesh& fm = s.facets[facet];
-  const VertexRecord& r = s.vertices[w];
-  KPoint2 p = local_point(s, facet, r.point);
-  Vh2 vh;
+namespace {
+
+// Where a boundary point goes in one facet's 2D triangulation, as CGAL's insert(point, locate type, face, index)
+// takes it. A point on a segment splits the constrained edge between its chain neighbours; a facet point is
+// located. `ok` is false when the point cannot go in without corrupting the triangulation: its 2D location is an
+// existing vertex (a runaway of Rules 1-2 at the limit of double precision: CGAL would return that vertex, and the
+// new vertex's id would overwrite the old one's), or a segment point whose chain neighbours are not joined by an
+// edge.
+struct FacetPlacement {
+  bool ok = false;
+  KPoint2 point;
+  Cdt2::Locate_type type = Cdt2::EDGE;
+  Fh2 face;
+  int index = 0;
+};
+
+FacetPlacement place_in_facet(const MeshState& s, Index facet, const VertexRecord& r, Index near = kNoIndex) {
+  const FacetMesh& fm = s.facets[facet];
+  FacetPlacement out;
+  out.point = local_point(s, facet, r.point);
   if (r.kind == VertexKind::Segment) {
     // Symbolically on the constrained edge between its chain neighbours: split that edge.
     const Vh2 a = facet_vertex_handle(s, facet, r.prev), b = facet_vertex_handle(s, facet, r.next);
     Fh2 fh;
     int i = 0;
-    if (a != Vh2() && b != Vh2() && fm.cdt.is_edge(a, b, fh, i)) {
-      // The point projected from 3D normally lies in the edge's two triangles. Next to a needle triangle rounding
-      // can put it outside, and splitting the edge there folds the triangulation; then take the point on the 2D
-      // edge at the vertex's parameter between its chain neighbours instead, when that one lies inside. (Where
-      // neither does, e.g. collinear with a neighbour on a straight chain, the projected point is kept: CGAL's
-      // flips repair those, 1385_Laufrad_1000.stp has such points and meshes exactly.)
-      if (!splits_edge_without_fold(fm.cdt, fh, i, p)) {
-        const double ta = segment_parameter(s, r.host, r.prev), tb = segment_parameter(s, r.host, r.next);
-        const KPoint2 pa = a->point(), pb = b->point();
-        const double u = tb != ta ? (r.t - ta) / (tb - ta) : 0.5;
-        const KPoint2 q(pa.x() + u * (pb.x() - pa.x()), pa.y() + u * (pb.y() - pa.y()));
-        if (splits_edge_without_fold(fm.cdt, fh, i, q)) p = q;
+    if (a == Vh2() || b == Vh2() || !fm.cdt.is_edge(a, b, fh, i)) return out;
+    // The point projected from 3D normally lies in the edge's two triangles. Next to a needle triangle rounding
+    // can put it outside, and splitting the edge there folds the triangulation; then take the point on the 2D
+    // edge at the vertex's parameter between its chain neighbours instead, when that one lies inside. (Where
+    // neither does, e.g. collinear with a neighbour on a straight chain, the projected point is kept: CGAL's
+    // flips repair those, 1385_Laufrad_1000.stp has such points and meshes exactly; but not one on a vertex.)
+    if (!splits_edge_without_fold(fm.cdt, fh, i, out.point)) {
+      const double ta = segment_parameter(s, r.host, r.prev), tb = segment_parameter(s, r.host, r.next);
+      const KPoint2 pa = a->point(), pb = b->point();
+      const double u = tb != ta ? (r.t - ta) / (tb - ta) : 0.5;
+      const KPoint2 q(pa.x() + u * (pb.x() - pa.x()), pa.y() + u * (pb.y() - pa.y()));
+      if (splits_edge_without_fold(fm.cdt, fh, i, q)) {
+        out.point = q;
+      } else {
+        Cdt2::Locate_type lt;
+        int li = 0;
+        fm.cdt.locate(out.point, lt, li, fh);
+        if (lt == Cdt2::VERTEX) return out;
       }
-      vh = fm.cdt.insert(p, Cdt2::EDGE, fh, i);
     }
+    out.face = fh;
+    out.index = i;
+  } else {
+    const Vh2 start = near == kNoIndex ? Vh2() : facet_vertex_handle(s, facet, near);
+    out.face = fm.cdt.locate(out.point, out.type, out.index, start == Vh2() ? Fh2() : start->face());
+    if (out.type == Cdt2::VERTEX) return out;
   }
-  if (vh == Vh2()) {
-    Fh2 hint;
-    const auto it = fm.handle_map.find(r.kind == VertexKind::Segment ? r.prev : kNoIndex);
-    if (it != fm.handle_map.end()) hint = it->second->face();
-    vh = fm.cdt.insert(p, hint);
+  out.ok = true;
+  return out;
+}
+
+}  // namespace
+
+bool facet_accepts_point(const MeshState& s, const VertexRecord& r, Index near) {
+  if (r.kind == VertexKind::Segment) {
+    for (const SegmentInFacet& sf : s.complex.segment_facets[r.host])
+      if (!place_in_facet(s, sf.facet, r).ok) return false;
+    return true;
   }
+  return r.kind != VertexKind::Facet || place_in_facet(s, r.host, r, near).ok;
+}
+
+void MeshState::stop_at_precision(const std::string& element, double size, const Point3& where) {
+  vertex_limit_reached = true;
+  if (!precision_stop.empty()) return;
+  char text[200];
+  std::snprintf(text, sizeof text, " (size %.3g) at (%.17g, %.17g, %.17g)", size, where[0], where[1], where[2]);
+  precision_stop = "the split point of an element of " + element + text +
+                   " falls on a vertex of a facet's 2D triangulation";
+}
+
+void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::array<Index, 3>>* new_faces) {
+  FacetMesh& fm = s.facets[facet];
+  const FacetPlacement at = place_in_facet(s, facet, s.vertices[w]);
+  if (!at.ok)  // the levels ask facet_accepts_point() before inserting anywhere
+    throw std::logic_error("insert_into_facet: vertex " + std::to_string(w) + " has no place in facet " +
+                           std::to_string(facet) + "'s triangulation");
+  const Vh2 vh = fm.cdt.insert(at.point, at.type, at.face, at.index);
   vh->info() = w;
   if (s.vertices[w].kind == VertexKind::Facet) s.vertices[w].facet_handle = vh;
   else fm.handle_map[w] = vh;
