@@ -294,7 +294,8 @@ class QualMeshRun(object):
 
 def exit_status_meaning(code):
     return {1: "internal error (a bug in qualmesh: please report it with the model)",
-            2: "bad input or usage", 3: "the mesh check found defects"}.get(
+            2: "bad input or usage", 3: "the mesh check found defects",
+            4: "a limit stopped meshing: time, memory, vertex count or double precision (the message says which)"}.get(
         code, "killed by signal {}".format(-code) if code is not None and code < 0 else "exit status {}".format(code))
 
 
