@@ -249,7 +249,7 @@ struct MeshResult {
   // facets incident to it. Rule 3 does not split these (the short edge is forced by the input).
   std::vector<std::uint8_t> tet_touches_acute_angle;
   MeshStats stats;
-  std::string message;  // PrecisionExhausted: where refinement stopped (the element, its size, the rule)
+  std::string message;  // PrecisionExhausted: where refinement stopped (the input element, its size, the point)
 };
 
 // Thrown by mesh_plc() when MeshOptions::cancel stops it before the input vertices are triangulated (no partial mesh).

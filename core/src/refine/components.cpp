@@ -259,7 +259,10 @@ MeshResult merge_component_results(const std::vector<PlcComponent>& parts, std::
                                        results[k].tet_touches_acute_angle.end());
     if (k == 0) out.stats = results[k].stats;
     else merge_stats(out.stats, results[k].stats);
-    if (out.status == MeshStatus::Ok) out.status = results[k].status;
+    if (out.status == MeshStatus::Ok) {
+      out.status = results[k].status;
+      out.message = results[k].message;
+    }
   }
   return out;
 }

@@ -206,10 +206,6 @@ bool splits_edge_without_fold(const Cdt2& cdt, Fh2 fh, int i, const KPoint2& p) 
   return true;
 }
 
-}  // namespace
-
-namespace {
-
 // Where a boundary point goes in one facet's 2D triangulation, as CGAL's insert(point, locate type, face, index)
 // takes it. A point on a segment splits the constrained edge between its chain neighbours; a facet point is
 // located. `ok` is false when the point cannot go in without corrupting the triangulation: its 2D location is an
