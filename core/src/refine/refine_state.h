@@ -228,8 +228,8 @@ Index subfacet_of(const MeshState& s, Index a, Index b, Index c);
 // Whether a boundary point `r` (kind Segment, with its chain neighbours prev and next, or kind Facet) has a place in
 // the 2D triangulation of every facet it lies on: false when its location there is already a vertex (refinement at
 // the limit of double precision), or when a segment point's neighbours are not joined by an edge. Rules 1-2 ask
-// before inserting (MeshState::stop_at_precision). `near`: a vertex of r's facet near it, where the 2D walk starts.
-bool facet_accepts_point(const MeshState& s, const VertexRecord& r, Index near = kNoIndex);
+// before inserting (MeshState::stop_at_precision); insert_into_facet() then finds the same place.
+bool facet_accepts_point(const MeshState& s, const VertexRecord& r);
 // Inserts vertex w (on facet f, or on a segment of f) into f's 2D triangulation; returns the new subfacets. Throws
 // std::logic_error where facet_accepts_point() is false.
 void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::array<Index, 3>>* new_faces);

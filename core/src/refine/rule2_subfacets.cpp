@@ -116,7 +116,7 @@ bool split_subfacet(MeshState& s, Rule2Subfacets& level, Index facet, const std:
   r.point = to_point3(center);
   r.kind = VertexKind::Facet;
   r.host = facet;
-  if (!facet_accepts_point(s, r, abc[0])) {
+  if (!facet_accepts_point(s, r)) {
     s.stop_at_precision("facet " + std::to_string(facet),
                         std::sqrt(CGAL::squared_radius(s.kpoint(abc[0]), s.kpoint(abc[1]), s.kpoint(abc[2]))),
                         r.point);

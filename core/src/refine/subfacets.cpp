@@ -220,7 +220,7 @@ struct FacetPlacement {
   int index = 0;
 };
 
-FacetPlacement place_in_facet(const MeshState& s, Index facet, const VertexRecord& r, Index near = kNoIndex) {
+FacetPlacement place_in_facet(const MeshState& s, Index facet, const VertexRecord& r) {
   const FacetMesh& fm = s.facets[facet];
   FacetPlacement out;
   out.point = local_point(s, facet, r.point);
@@ -252,8 +252,11 @@ FacetPlacement place_in_facet(const MeshState& s, Index facet, const VertexRecor
     out.face = fh;
     out.index = i;
   } else {
-    const Vh2 start = near == kNoIndex ? Vh2() : facet_vertex_handle(s, facet, near);
-    out.face = fm.cdt.locate(out.point, out.type, out.index, start == Vh2() ? Fh2() : start->face());
+    // No hint, as CGAL's insert(p) locates: the levels' check and the insertion then make the same walk and find
+    // the same place. (With a hint at a vertex of the split subfacet, bottle.brep at --size 80 found no vertex
+    // there and the insertion then found one: near the runaway the facet's triangulation is folded, and the walk's
+    // answer depends on where it starts.)
+    out.face = fm.cdt.locate(out.point, out.type, out.index);
     if (out.type == Cdt2::VERTEX) return out;
   }
   out.ok = true;
@@ -262,13 +265,13 @@ FacetPlacement place_in_facet(const MeshState& s, Index facet, const VertexRecor
 
 }  // namespace
 
-bool facet_accepts_point(const MeshState& s, const VertexRecord& r, Index near) {
+bool facet_accepts_point(const MeshState& s, const VertexRecord& r) {
   if (r.kind == VertexKind::Segment) {
     for (const SegmentInFacet& sf : s.complex.segment_facets[r.host])
       if (!place_in_facet(s, sf.facet, r).ok) return false;
     return true;
   }
-  return r.kind != VertexKind::Facet || place_in_facet(s, r.host, r, near).ok;
+  return r.kind != VertexKind::Facet || place_in_facet(s, r.host, r).ok;
 }
 
 void MeshState::stop_at_precision(const std::string& element, double size, const Point3& where) {
