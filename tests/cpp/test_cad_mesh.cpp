@@ -224,7 +224,7 @@ TEST(CadMeshes, Cube1000AtHalfItsDefaultSizeHasNoFlatCellOutsideTheBoundary) {
 // wrenchnut.stp at bench_cad_gmsh's second size (--size 20.3), as `qualmesh mesh` meshes it: the improvement pass
 // kept a 0.62 deg cap between CAD faces 25 and 27, which meet at 178.8 deg along a B-spline edge. Its four corners
 // are nearly cocircular (radius-edge ratio 3.54), and the 3-2 flip that removes it makes two 23.8 deg tets of ratio
-// 3.61, which a bound of 1.5 rho0 on changed tets refused (mesher.h kImproveRadiusEdgeFactor, now 2 rho0): 12.07 deg.
+// 3.61, which a bound of 1.5 rho0 on changed tets refused (mesher.h kImproveRadiusEdgeFactor, now 3 rho0): 12.87 deg.
 TEST(CadMeshes, WrenchnutAtHalfItsDefaultSizeHasNoTetBelowTenDegrees) {
   CadOptions cad;
   cad.size = 20.3044;

@@ -32,8 +32,15 @@ namespace qualmesh {
 // tets below 10 deg 1803 -> 1626 and below 15 deg 3032 -> 2581; on 11 surfaces of ../shared/data/plc the count of
 // tets below 10 deg fell on 9 (couplingdown 1099 -> 631, pinion 7001 -> 5700) and stayed 0 on 2, at up to 15% more
 // vertices (pinion's interior edge splits), more tets above rho0 (pinion 21641 -> 27861) and one lower minimum
-// (joint.off 1.31 -> 1.24 deg).
-inline constexpr double kImproveRadiusEdgeFactor = 2.0;
+// (joint.off 1.31 -> 1.24 deg). 3.0 (was 2.0): the guard, not the angles, stopped the pass at the last slivers
+// (wrenchnut.stp at --size 20.3 on an experimental Delaunay-flipped surface: a 4.6-4.8 deg tet left at 2.0, none
+// below 15 deg at 3.0).
+// Over the 42 runs of every file of ../shared/data/cad (but U_Joint_2) at diag/10, /20 and /40: tets below 10 deg
+// 252 -> 175, below 15 deg 580 -> 437, the minimum higher in 19 runs and lower in 5 (Zylkopf.stp at diag/40
+// 6.42 -> 4.52 deg), nodes +0.1%. On fandisk, joint, elephant, pinion, couplingdown and anchor: below 10 deg
+// 0/55/0/5700/631/1019 -> 0/28/0/3785/342/709, joint's minimum 1.24 -> 2.81 deg, at up to 30% more vertices
+// (pinion 16477 -> 21381: interior edge splits) and anchor's minimum 0.039 -> 0.038 deg.
+inline constexpr double kImproveRadiusEdgeFactor = 3.0;
 // The longest edge Rule 3 allows, relative to MeshOptions::target_edge_length.
 inline constexpr double kLongestEdgePerTarget = 2.0;
 
