@@ -230,7 +230,7 @@ class PlcBuilder {
         pieces.emplace(std::min(chain[i], chain[i + 1]), std::max(chain[i], chain[i + 1]));
     const auto fixed = [boundary_end](Index id) { return id < boundary_end; };
     const auto is_piece = [&pieces](Index a, Index b) { return pieces.count({std::min(a, b), std::max(a, b)}) > 0; };
-    std::size_t num_remeshed = 0, num_partial = 0;
+    std::size_t num_remeshed = 0, num_partial = 0, num_flips = 0;
     std::string refused;
     for (int f = 1; f < static_cast<int>(triangles.size()); ++f) {
       if (triangles[f].empty()) continue;
@@ -238,6 +238,7 @@ class PlcBuilder {
       triangles[f] = remesh_face_on_surface(face, kRemeshLengthFactor * face_size(f, field), triangles[f], fixed,
                                             is_piece, source, vertices, stats[f]);
       num_remeshed += stats[f].remeshed;
+      num_flips += stats[f].num_delaunay_flips;
       num_partial += stats[f].remeshed && stats[f].num_remesh_rounds < kRemeshRounds;
       if (!stats[f].remeshed)
         refused += (refused.empty() ? "" : ", ") + ("Face" + std::to_string(f)) + " (" + stats[f].remesh_refused + ")";
@@ -245,7 +246,8 @@ class PlcBuilder {
     if (num_remeshed || !refused.empty())
       model_.summary.surface_log.push_back(
           std::to_string(num_remeshed) + " faces remeshed on the CAD surface (" + std::to_string(num_partial) +
-          " of them stopped early: a round was undone)" +
+          " of them stopped early: a round was undone; " + std::to_string(num_flips) +
+          " edges of curved faces flipped to locally Delaunay ones)" +
           (refused.empty() ? "" : "; kept the refinement's triangles: " + refused));
   }
 

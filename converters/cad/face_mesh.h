@@ -42,6 +42,7 @@ struct FaceMeshStats {
   bool remeshed = false;
   int num_remesh_rounds = 0;
   std::string remesh_refused;
+  std::size_t num_delaunay_flips = 0;  // remesh_face_on_surface's flips to locally Delaunay edges
 };
 
 using SurfaceTriangle = std::array<Index, 3>;
