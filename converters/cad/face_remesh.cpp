@@ -67,12 +67,17 @@ constexpr double kSmallestCornerDeg = 5;
 
 gp_Pnt to_gp(const K::Point_3& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
 
+// The angle at p of triangle p, q, r in radians; `degenerate` when an edge at p has no length.
+double corner_rad(const K::Point_3& p, const K::Point_3& q, const K::Point_3& r, double degenerate) {
+  const K::Vector_3 u = q - p, w = r - p;
+  const double n = std::sqrt(u.squared_length() * w.squared_length());
+  if (!(n > 0)) return degenerate;
+  return std::acos(std::clamp(u * w / n, -1.0, 1.0));
+}
+
 double min_corner_deg(const K::Point_3& a, const K::Point_3& b, const K::Point_3& c) {
   auto angle = [](const K::Point_3& p, const K::Point_3& q, const K::Point_3& r) {
-    const K::Vector_3 u = q - p, w = r - p;
-    const double n = std::sqrt(u.squared_length() * w.squared_length());
-    if (!(n > 0)) return 0.0;
-    return std::acos(std::clamp(u * w / n, -1.0, 1.0)) * 180 / M_PI;
+    return corner_rad(p, q, r, 0.0) * 180 / M_PI;
   };
   return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
 }
@@ -143,13 +148,16 @@ class FaceRemesher {
     return "";
   }
 
+  // The smallest corner angle of triangle f, in degrees.
+  double smallest_corner(FaceD f) const {
+    const std::array<VertexD, 3> v = corners(f);
+    return min_corner_deg(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]));
+  }
+
   // The smallest corner angle of the triangles, in degrees.
   double min_angle_deg() const {
     double angle = 180;
-    for (FaceD f : mesh_.faces()) {
-      const std::array<VertexD, 3> v = corners(f);
-      angle = std::min(angle, min_corner_deg(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2])));
-    }
+    for (FaceD f : mesh_.faces()) angle = std::min(angle, smallest_corner(f));
     return angle;
   }
 
@@ -226,11 +234,6 @@ class FaceRemesher {
     return why;
   }
 
-  double smallest_corner(FaceD f) const {
-    const std::array<VertexD, 3> v = corners(f);
-    return min_corner_deg(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]));
-  }
-
   // How much the two triangles of halfedge h bend against each other: 1 - the cosine of the angle between their
   // normals (0: coplanar).
   double bend(HalfedgeD h) const {
@@ -256,10 +259,8 @@ class FaceRemesher {
   std::size_t delaunay_flips() {
     if (surface_.GetType() == GeomAbs_Plane) return 0;
     constexpr int kFlipPasses = 8;
-    auto corner = [&](VertexD p, VertexD q, VertexD r) {  // the angle at p, radians
-      const K::Vector_3 u = mesh_.point(q) - mesh_.point(p), w = mesh_.point(r) - mesh_.point(p);
-      const double n = std::sqrt(u.squared_length() * w.squared_length());
-      return n > 0 ? std::acos(std::clamp(u * w / n, -1.0, 1.0)) : M_PI;
+    auto corner = [&](VertexD p, VertexD q, VertexD r) {
+      return corner_rad(mesh_.point(p), mesh_.point(q), mesh_.point(r), M_PI);
     };
     std::size_t total = 0;
     for (int pass = 0; pass < kFlipPasses; ++pass) {
@@ -400,14 +401,10 @@ class FaceRemesher {
   // the free edge opposite their largest corner is flipped when that raises the smallest corner of the two
   // triangles and both still face the surface.
   void flip_small_corners() {
-    auto smallest = [&](FaceD f) {
-      const std::array<VertexD, 3> v = corners(f);
-      return min_corner_deg(mesh_.point(v[0]), mesh_.point(v[1]), mesh_.point(v[2]));
-    };
     for (int pass = 0; pass < 3; ++pass) {
       std::size_t flips = 0;
       for (FaceD f : mesh_.faces()) {
-        if (smallest(f) >= kSmallestCornerDeg) continue;
+        if (smallest_corner(f) >= kSmallestCornerDeg) continue;
         HalfedgeD longest = Mesh::null_halfedge();
         double length = 0;
         const HalfedgeD h0 = mesh_.halfedge(f);
@@ -420,10 +417,10 @@ class FaceRemesher {
         const VertexD c = mesh_.target(mesh_.next(longest)), d = mesh_.target(mesh_.next(mesh_.opposite(longest)));
         if (mesh_.halfedge(c, d) != Mesh::null_halfedge()) continue;
         const FaceD g = mesh_.face(mesh_.opposite(longest));
-        const double was = std::min(smallest(f), smallest(g));
+        const double was = std::min(smallest_corner(f), smallest_corner(g));
         CGAL::Euler::flip_edge(longest, mesh_);
         const FaceD f2 = mesh_.face(longest), g2 = mesh_.face(mesh_.opposite(longest));
-        if (std::min(smallest(f2), smallest(g2)) > was && facing(f2) > kMinFacing && facing(g2) > kMinFacing)
+        if (std::min(smallest_corner(f2), smallest_corner(g2)) > was && facing(f2) > kMinFacing && facing(g2) > kMinFacing)
           ++flips;
         else
           CGAL::Euler::flip_edge(longest, mesh_);
