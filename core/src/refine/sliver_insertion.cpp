@@ -36,7 +36,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
 #include <tuple>
 #include <unordered_map>
@@ -155,12 +157,29 @@ bool conflict_zone(const MeshState& s, Ch3 start, const KWeightedPoint3& wp, int
 // zones of a sliver's candidates overlap, and nothing changes while they are evaluated.
 using CellMemo = std::unordered_map<Ch3, std::pair<double, double>, CellHash>;
 
-// evaluate()'s working vectors, kept across the candidates of a sliver.
+// evaluate()'s working data, kept across the candidates of a sliver (the marks across the whole pass), and the cells
+// the candidates read.
 struct Scratch {
   std::vector<Facet3> internal;
-  std::vector<Index> link_vertices;
-  std::vector<std::array<Index, 2>> link_edges;
+  // Link vertices of the current candidate: mark[v] == generation (one increment per candidate instead of clearing).
+  std::vector<std::uint32_t> mark;
+  std::uint32_t generation = 0;
+  std::vector<Ch3> read;  // zone cells and the cells across the zone's boundary (side_of_power_sphere, weight caps)
 };
+
+// Is ab an edge of one of the zone's boundary facets (the link)? Only asked for subsegments, which few zone cells
+// have: a scan of the link beats sorting its edges for every candidate.
+bool link_has_edge(const std::vector<Facet3>& boundary, Index a, Index b) {
+  for (const Facet3& f : boundary) {
+    int found = 0;
+    for (int k = 1; k < 4; ++k) {
+      const Index id = f.first->vertex((f.second + k) & 3)->info();
+      found += id == a || id == b;
+    }
+    if (found == 2) return true;
+  }
+  return false;
+}
 
 // Checks candidate p against the sliver `sliver` (see the file comment); fills `out` when p is acceptable
 // (PointRefusal::None). A candidate that cannot remove `min_removed` cells below the sliver angle (its zone holds fewer,
@@ -173,7 +192,10 @@ PointRefusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t mi
   // Destroys the sliver; then the zone is found from it, in one region inside the domain.
   if (s.tr.side_of_power_sphere(sliver, wp) != CGAL::ON_BOUNDED_SIDE) return PointRefusal::NotInConflict;
   std::vector<Facet3>& internal = scratch.internal;
-  if (!conflict_zone(s, sliver, wp, region, out.cells, out.boundary, internal)) return PointRefusal::Region;
+  const bool in_region = conflict_zone(s, sliver, wp, region, out.cells, out.boundary, internal);
+  scratch.read.insert(scratch.read.end(), out.cells.begin(), out.cells.end());
+  for (const Facet3& f : out.boundary) scratch.read.push_back(f.first->neighbor(f.second));
+  if (!in_region) return PointRefusal::Region;
   if (out.boundary.empty()) return PointRefusal::NotInConflict;
   StarQuality destroyed;
   double destroyed_max_radius_edge = 0;
@@ -191,34 +213,28 @@ PointRefusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t mi
   // No subfacet inside the zone.
   for (const Facet3& f : internal)
     if (face_subfacet(s, f.first, f.second) != kNoIndex) return PointRefusal::SubfacetInside;
-  // Link (boundary) vertices and edges, sorted (a zone has a few dozen).
-  std::vector<Index>& link_vertices = scratch.link_vertices;
-  std::vector<std::array<Index, 2>>& link_edges = scratch.link_edges;
-  link_vertices.clear();
-  link_edges.clear();
-  for (const Facet3& f : out.boundary) {
-    Index ids[3];
-    for (int k = 0; k < 3; ++k) ids[k] = f.first->vertex((f.second + 1 + k) & 3)->info();
-    for (int k = 0; k < 3; ++k) {
-      link_vertices.push_back(ids[k]);
-      link_edges.push_back({std::min(ids[k], ids[(k + 1) % 3]), std::max(ids[k], ids[(k + 1) % 3])});
-    }
+  // No vertex hidden (every vertex of the zone's cells is on its boundary); no subsegment lost (every subsegment
+  // of the zone's cells is an edge of its boundary).
+  if (++scratch.generation == 0) {  // wrapped: clear the marks
+    std::fill(scratch.mark.begin(), scratch.mark.end(), 0);
+    scratch.generation = 1;
   }
-  std::sort(link_vertices.begin(), link_vertices.end());
-  std::sort(link_edges.begin(), link_edges.end());
-  // No vertex hidden; no subsegment lost.
+  scratch.mark.resize(s.vertices.size(), 0);
+  for (const Facet3& f : out.boundary)
+    for (int k = 1; k < 4; ++k) {
+      const Index id = f.first->vertex((f.second + k) & 3)->info();
+      if (id != kNoIndex) scratch.mark[id] = scratch.generation;
+    }
   for (const Ch3& c : out.cells) {
     Index ids[4];
     for (int k = 0; k < 4; ++k) {
       ids[k] = c->vertex(k)->info();
-      if (!std::binary_search(link_vertices.begin(), link_vertices.end(), ids[k])) return PointRefusal::Hidden;
+      if (ids[k] == kNoIndex || scratch.mark[ids[k]] != scratch.generation) return PointRefusal::Hidden;
     }
     for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) {
-        if (subsegment_of(s, ids[a], ids[b]) == kNoIndex) continue;
-        const std::array<Index, 2> edge{std::min(ids[a], ids[b]), std::max(ids[a], ids[b])};
-        if (!std::binary_search(link_edges.begin(), link_edges.end(), edge)) return PointRefusal::LostSubsegment;
-      }
+      for (int b = a + 1; b < 4; ++b)
+        if (subsegment_of(s, ids[a], ids[b]) != kNoIndex && !link_has_edge(out.boundary, ids[a], ids[b]))
+          return PointRefusal::LostSubsegment;
   }
   // Weight caps of the vertices around p: those of the link and those across it.
   const double sq_delta = s.params.sq_delta;
@@ -316,15 +332,39 @@ std::vector<Bad> slivers_worst_first(const MeshState& s, std::size_t* num_away) 
   return bad;
 }
 
+// A sliver none of whose candidates was inserted: what a later round needs to know that they would all be refused
+// again. evaluate() reads only the cells of `footprint` (a weight change or an insertion recreates the cells it
+// touches, with new time stamps) and the input's static data, and a refusal other than FewRemoved does not depend on
+// min_removed (the FewRemoved checks come after the Region check, and a check passed for a larger min_removed is
+// passed for a smaller one).
+struct RefusedSliver {
+  std::size_t min_removed = 0;
+  bool few_removed = false;  // a candidate refused as FewRemoved or accepted: a smaller min_removed may insert one
+  PointRefusal furthest = PointRefusal::None;
+  std::vector<std::pair<Ch3, std::size_t>> footprint;  // cells read, with their time stamps
+};
+
+// Would `r` refuse the sliver again in a round asking for `min_removed`: the same cells, and the same request or no
+// candidate that a smaller request could accept.
+bool refused_again(const MeshState& s, const RefusedSliver& r, std::size_t min_removed) {
+  if (r.min_removed != min_removed && r.few_removed) return false;
+  const auto& container = s.tr.tds().cells();
+  return std::all_of(r.footprint.begin(), r.footprint.end(), [&](const std::pair<Ch3, std::size_t>& c) {
+    return container.is_used(c.first) && c.first->time_stamp() == c.second;
+  });
+}
+
 // Inserts the best candidate of `c` that removes at least `min_removed` cells below the sliver angle; otherwise
-// returns the furthest refusal among the candidates. `num_in_balls` counts the boundary elements whose diametral
-// balls hold the inserted point. The new star is pumped again with `walks`.
-PointRefusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std::size_t* num_in_balls, WalkCache& walks) {
+// returns the furthest refusal among the candidates and, with `refused`, what refused_again needs. `num_in_balls`
+// counts the boundary elements whose diametral balls hold the inserted point. The new star is pumped again with
+// `walks`.
+PointRefusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std::size_t* num_in_balls, WalkCache& walks,
+                              Scratch& scratch, RefusedSliver* refused) {
   Candidate best, trial;
   bool found = false;
   PointRefusal furthest = PointRefusal::NotInConflict;
   CellMemo memo;
-  Scratch scratch;
+  scratch.read.assign(1, c);
   for (const KPoint3& p : candidate_points(c)) {
     const PointRefusal r = evaluate(s, c, p, min_removed, trial, memo, scratch);
     if (r != PointRefusal::None) {
@@ -336,8 +376,16 @@ PointRefusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std:
       found = true;
     }
   }
-  if (!found) return furthest;
-  if (best.num_removed < min_removed) return PointRefusal::FewRemoved;
+  if (!found || best.num_removed < min_removed) {
+    refused->min_removed = min_removed;
+    refused->few_removed = found || furthest == PointRefusal::FewRemoved;
+    refused->furthest = found ? PointRefusal::FewRemoved : furthest;
+    std::sort(scratch.read.begin(), scratch.read.end());
+    scratch.read.erase(std::unique(scratch.read.begin(), scratch.read.end()), scratch.read.end());
+    refused->footprint.clear();
+    for (const Ch3& r : scratch.read) refused->footprint.emplace_back(r, r->time_stamp());
+    return refused->furthest;
+  }
   std::vector<Index> star;
   for (const Facet3& f : best.boundary)
     for (int k = 1; k < 4; ++k) star.push_back(f.first->vertex((f.second + k) & 3)->info());
@@ -389,6 +437,9 @@ void insert_at_slivers(MeshState& s) {
   std::size_t total = 0, refused = 0;
   bool budget_spent = false;
   WalkCache walks;
+  std::map<std::array<Index, 4>, RefusedSliver> refusals;  // by sorted vertex ids
+  std::size_t num_skipped = 0;
+  Scratch scratch;
   for (int round = 0; round < kMaxRounds && !budget_spent; ++round) {
     std::size_t inserted = 0, in_balls = 0;
     refused = 0;
@@ -404,8 +455,19 @@ void insert_at_slivers(MeshState& s) {
       if (!s.tr.is_cell(s.vertices[b.ids[0]].handle, s.vertices[b.ids[1]].handle, s.vertices[b.ids[2]].handle,
                         s.vertices[b.ids[3]].handle, c))
         continue;  // gone with an earlier insertion
-      const PointRefusal r = insert_at_sliver(s, c, std::size_t(std::max(1, 3 - round)), &in_balls, walks);
+      const std::size_t min_removed = std::size_t(std::max(1, 3 - round));
+      std::array<Index, 4> key = b.ids;
+      std::sort(key.begin(), key.end());
+      RefusedSliver& record = refusals[key];
+      PointRefusal r;
+      if (record.furthest != PointRefusal::None && refused_again(s, record, min_removed)) {
+        r = record.furthest;  // evaluated in an earlier round; nothing it read has changed since
+        ++num_skipped;
+      } else {
+        r = insert_at_sliver(s, c, min_removed, &in_balls, walks, scratch, &record);
+      }
       if (r == PointRefusal::None) {
+        refusals.erase(key);
         ++inserted;
       } else {
         ++refused;
@@ -423,7 +485,8 @@ void insert_at_slivers(MeshState& s) {
     if (inserted == 0 && round >= 2) break;  // the rounds asking for more than one removal may insert nothing
   }
   s.log_line("sliver insertion: " + std::to_string(walks.misses()) + " vertex walks, " +
-             std::to_string(walks.hits()) + " reused (their cells unchanged)");
+             std::to_string(walks.hits()) + " reused (their cells unchanged); " + std::to_string(num_skipped) +
+             " slivers refused again without evaluating their candidates (nothing they read changed)");
   s.stats.num_sliver_insertions = total;
   s.stats.num_sliver_insertions_refused = refused;
 }
