@@ -234,6 +234,21 @@ class FaceRemesher {
     return why;
   }
 
+  // Flips h's edge and keeps the flip when it raises the smaller smallest corner of its two triangles, both still
+  // face the surface, and `also_keep()` holds after it; otherwise flips back. Returns whether the flip stays. The
+  // caller has checked that the other diagonal is no edge yet.
+  template <class AlsoKeep>
+  bool flip_if_better(HalfedgeD h, AlsoKeep also_keep) {
+    const double was = std::min(smallest_corner(mesh_.face(h)), smallest_corner(mesh_.face(mesh_.opposite(h))));
+    CGAL::Euler::flip_edge(h, mesh_);
+    const FaceD f = mesh_.face(h), g = mesh_.face(mesh_.opposite(h));
+    if (also_keep() && std::min(smallest_corner(f), smallest_corner(g)) > was && facing(f) > kMinFacing &&
+        facing(g) > kMinFacing)
+      return true;
+    CGAL::Euler::flip_edge(h, mesh_);
+    return false;
+  }
+
   // How much the two triangles of halfedge h bend against each other: 1 - the cosine of the angle between their
   // normals (0: coplanar).
   double bend(HalfedgeD h) const {
@@ -273,14 +288,7 @@ class FaceRemesher {
         if (corner(c, a, b) + corner(d, a, b) <= M_PI * (1 + 1e-9)) continue;
         if (mesh_.halfedge(c, d) != Mesh::null_halfedge()) continue;
         const double fold = bend(h);
-        const double was = std::min(smallest_corner(mesh_.face(h)), smallest_corner(mesh_.face(mesh_.opposite(h))));
-        CGAL::Euler::flip_edge(h, mesh_);
-        if (bend(h) <= fold &&
-            std::min(smallest_corner(mesh_.face(h)), smallest_corner(mesh_.face(mesh_.opposite(h)))) > was &&
-            facing(mesh_.face(h)) > kMinFacing && facing(mesh_.face(mesh_.opposite(h))) > kMinFacing)
-          ++flips;
-        else
-          CGAL::Euler::flip_edge(h, mesh_);
+        flips += flip_if_better(h, [&] { return bend(h) <= fold; });
       }
       total += flips;
       if (flips == 0) break;
@@ -416,14 +424,7 @@ class FaceRemesher {
         if (edge_fixed_[e] || mesh_.is_border(e)) continue;
         const VertexD c = mesh_.target(mesh_.next(longest)), d = mesh_.target(mesh_.next(mesh_.opposite(longest)));
         if (mesh_.halfedge(c, d) != Mesh::null_halfedge()) continue;
-        const FaceD g = mesh_.face(mesh_.opposite(longest));
-        const double was = std::min(smallest_corner(f), smallest_corner(g));
-        CGAL::Euler::flip_edge(longest, mesh_);
-        const FaceD f2 = mesh_.face(longest), g2 = mesh_.face(mesh_.opposite(longest));
-        if (std::min(smallest_corner(f2), smallest_corner(g2)) > was && facing(f2) > kMinFacing && facing(g2) > kMinFacing)
-          ++flips;
-        else
-          CGAL::Euler::flip_edge(longest, mesh_);
+        flips += flip_if_better(longest, [] { return true; });
       }
       if (flips == 0) break;
     }

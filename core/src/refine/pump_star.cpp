@@ -392,8 +392,7 @@ void add_destroyed_cell(const MeshState& s, Ch3 c, StarScore* score) {
 // sliver, after its own vertices failed). Then a star is acceptable when the sliver is in the zone and the new star
 // beats every cell it destroys (the zone, not only v's old star: the sliver is not in v's star), so the mesh's
 // smallest dihedral angle still cannot drop.
-PumpChoice best_weight(MeshState& s, Index v, const Ch3* target,
-                       std::vector<std::pair<Ch3, std::size_t>>* footprint) {
+PumpChoice best_weight(MeshState& s, Index v, const Ch3* target, CellFootprint* footprint) {
   PumpChoice choice;
   const Vh3 vh = s.vertices[v].handle;
   std::vector<Ch3> cells;  // v's star, then the zone as it grows
@@ -565,18 +564,19 @@ PumpChoice best_weight(MeshState& s, Index v, const Ch3* target,
   return done();
 }
 
+bool footprint_holds(const MeshState& s, const CellFootprint& footprint) {
+  const auto& container = s.tr.tds().cells();
+  return std::all_of(footprint.begin(), footprint.end(), [&](const std::pair<Ch3, std::size_t>& c) {
+    return container.is_used(c.first) && c.first->time_stamp() == c.second;
+  });
+}
+
 const PumpChoice& WalkCache::walk(MeshState& s, Index v) {
   auto [it, fresh] = entries_.try_emplace(v);
   Entry& e = it->second;
-  if (!fresh) {
-    const auto& container = s.tr.tds().cells();
-    const bool holds = std::all_of(e.cells.begin(), e.cells.end(), [&](const std::pair<Ch3, std::size_t>& c) {
-      return container.is_used(c.first) && c.first->time_stamp() == c.second;
-    });
-    if (holds) {
-      ++hits_;
-      return e.choice;
-    }
+  if (!fresh && footprint_holds(s, e.cells)) {
+    ++hits_;
+    return e.choice;
   }
   ++misses_;
   e.choice = best_weight(s, v, nullptr, &e.cells);

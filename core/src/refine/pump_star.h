@@ -63,14 +63,18 @@ struct PumpChoice {
 // The cell on vertices `ids`, if the triangulation still has it.
 bool current_cell(const MeshState& s, const std::array<Index, 4>& ids, Ch3& c);
 
+// Cells a computation read, with their time stamps (cgal_types.h's WithTimeStamp): a destroyed cell, or a new cell
+// in its place, fails footprint_holds. WalkCache keeps walks by them, and sliver insertion its refused slivers.
+using CellFootprint = std::vector<std::pair<Ch3, std::size_t>>;
+bool footprint_holds(const MeshState& s, const CellFootprint& footprint);
+
 // Walks the critical weights of v from its current weight up to its cap (pump_star.cpp's file comment) and returns
 // the best star's weight. `target` (optional): a sliver v is not a vertex of, to be removed by growing v's star over
 // it (a neighbour of the sliver, after its own vertices failed). Then a star is acceptable when the sliver is in the
 // zone and the new star beats every cell it destroys (the zone, not only v's old star: the sliver is not in v's
 // star), so the mesh's smallest dihedral angle still cannot drop. Changes nothing but caches (f(v), angles).
 // `footprint` (optional): gets the cells the walk read (WalkCache).
-PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr,
-                       std::vector<std::pair<Ch3, std::size_t>>* footprint = nullptr);
+PumpChoice best_weight(MeshState& s, Index v, const Ch3* target = nullptr, CellFootprint* footprint = nullptr);
 
 // Walks kept across pump_around() calls (sliver insertion pumps again around every point it inserts, and most of
 // the vertices it walks there were walked around an earlier point, with the same star). A walk is kept with its
@@ -89,7 +93,7 @@ class WalkCache {
  private:
   struct Entry {
     PumpChoice choice;
-    std::vector<std::pair<Ch3, std::size_t>> cells;
+    CellFootprint cells;
   };
   std::unordered_map<Index, Entry> entries_;
   std::size_t hits_ = 0, misses_ = 0;

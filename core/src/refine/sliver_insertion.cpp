@@ -342,17 +342,13 @@ struct RefusedSliver {
   std::size_t min_removed = 0;
   bool few_removed = false;  // a candidate refused as FewRemoved or accepted: a smaller min_removed may insert one
   PointRefusal furthest = PointRefusal::None;
-  std::vector<std::pair<Ch3, std::size_t>> footprint;  // cells read, with their time stamps
+  CellFootprint footprint;  // the cells the candidates read
 };
 
 // Would `r` refuse the sliver again in a round asking for `min_removed`: the same cells, and the same request or no
 // candidate that a smaller request could accept.
 bool refused_again(const MeshState& s, const RefusedSliver& r, std::size_t min_removed) {
-  if (r.min_removed != min_removed && r.few_removed) return false;
-  const auto& container = s.tr.tds().cells();
-  return std::all_of(r.footprint.begin(), r.footprint.end(), [&](const std::pair<Ch3, std::size_t>& c) {
-    return container.is_used(c.first) && c.first->time_stamp() == c.second;
-  });
+  return (r.min_removed == min_removed || !r.few_removed) && footprint_holds(s, r.footprint);
 }
 
 // Inserts the best candidate of `c` that removes at least `min_removed` cells below the sliver angle; otherwise
