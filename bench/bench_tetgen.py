@@ -17,8 +17,10 @@ Four tools per model, pumping on (QualMesh's default pipeline):
 All tools get the very same input: each model is first converted by `qualmesh convert` to a TetGen .poly (so TetGen
 also reads binary STL and sees the same merged polygonal facets). Every mesh is judged by the one checker,
 `qualmesh check MESH --ref POLY --json`: quality over ALL tetrahedra (min dihedral angle, tets below 10 and 15 deg),
-volume and facet-area error (conformity). QualMesh's own count of tets below 15 deg that touch no acute input angle
-(its summary line; "acute" there means any input angle below 90 deg) is the second line, never the headline.
+volume and facet-area error (conformity). The second line, never the headline, is the same checker's quality outside
+the protection zones of the input angles below 60 deg (protecting balls of the local feature size's radius at sharp
+vertices and along sharp segments; `qualmesh check --protection-angle`): how many tets the zones hold, and outside them
+the min dihedral angle and the tets below 15 deg, for every tool alike.
 
 Per tool: whole-process wall time (best of --repeat runs), peak resident memory of that process (from wait4), vertices
 and tets; then the ratios to TetGen's time, memory and vertices. Not a test: timings on a shared machine are noisy,
@@ -83,11 +85,13 @@ def check(qualmesh, mesh, poly, extra=()):
     return json.loads(proc.stdout)
 
 
-def away_from_acute(stdout):
-    """QualMesh's own count of tets below the sliver angle touching no acute input angle (the summary line of
-    `qualmesh mesh`; issue 4's target: none), or "n/a" when the line is absent."""
-    m = re.search(r"away from acute input angles: min dihedral [^,]*, (\d+) tetrahedra below", stdout)
-    return m.group(1) if m else "n/a"
+def outside_zones(report):
+    """The checker's figures outside the protection zones: (tets in the zones, min dihedral outside, tets < 15 deg
+    outside), or None when it did not measure them."""
+    if not report.get("protection_checked"):
+        return None
+    return (report["num_tets_in_protection_zone"], report["min_dihedral_outside_protection_deg"],
+            report["num_tets_outside_protection_below_15"])
 
 
 def count_node_file(path):
@@ -147,7 +151,7 @@ def main():
         for model in models:
             poly, name, error = to_tetgen_poly(args.qualmesh, model, tmp)
             if error:
-                lines.append(f"| {model.name} | - | {error} |" + "|" * 14)
+                lines.append(f"| {model.name} | - | {error} |" + "|" * 15)
                 continue
             print(f"{name} ...", file=sys.stderr, flush=True)
             results = {}
@@ -169,7 +173,7 @@ def main():
                     best, peak = min(best, dt), (None if rss is None or peak is None else max(peak, rss))
                 if proc.returncode != 0:
                     text = " ".join(f"failed ({proc.returncode}): {proc.stderr.strip()[-100:]}".split())
-                    lines.append(f"| {name} | {tool} | {text.replace('|', '/')} |" + "|" * 14)
+                    lines.append(f"| {name} | {tool} | {text.replace('|', '/')} |" + "|" * 15)
                     continue
                 if extra is not None and "--coplanar-tolerance" in extra:
                     # Conformity to the merged facets it meshed (checker ok, faces, areas); the volume error is
@@ -195,14 +199,14 @@ def main():
                     report = (check(args.qualmesh, tri / mesh.name, poly) if proc.returncode == 0 else
                               f"tetgen failed on the triangles ({proc.returncode})")
                 if isinstance(report, str):
-                    lines.append(f"| {name} | {tool} | {report.replace('|', '/')} |" + "|" * 14)
+                    lines.append(f"| {name} | {tool} | {report.replace('|', '/')} |" + "|" * 15)
                     continue
-                results[tool] = (best, peak, report, "n/a" if extra is None else away_from_acute(proc.stdout))
+                results[tool] = (best, peak, report, outside_zones(report))
             tetgen = results.get("tetgen -pq2")
             for tool, _ in tools:
                 if tool not in results:
                     continue
-                seconds, rss, r, away = results[tool]
+                seconds, rss, r, zones = results[tool]
                 vertices = r["num_points"] - r["num_unused_points"]
                 ratios = ["", "", ""]
                 if tetgen and tool != "tetgen -pq2":
@@ -213,25 +217,30 @@ def main():
                     summary.append((name, tool, r["num_tets"], seconds / tetgen[0], memory, vertices / tv,
                                     r["min_dihedral_deg"] >= tetgen[2]["min_dihedral_deg"],
                                     2 * r["num_tets_min_dihedral_below_10"] <=
-                                    tetgen[2]["num_tets_min_dihedral_below_10"]))
+                                    tetgen[2]["num_tets_min_dihedral_below_10"],
+                                    zones is not None and zones[2] == 0))
                 vol, area = r.get("volume_relative_error"), r.get("max_facet_area_relative_error")
                 fmt = lambda x: "n/a" if x is None else f"{x:.1e}"  # noqa: E731
+                zone_text = ("n/a | n/a | n/a" if zones is None else
+                             f"{zones[0]} ({100 * zones[0] / max(r['num_tets'], 1):.1f}%) | {zones[1]:.2f} | {zones[2]}")
                 lines.append(f"| {name} | {tool} | {vertices} | {r['num_tets']} | {seconds:.2f} | {'n/a' if rss is None else f'{rss:.0f}'} | "
                              f"{ratios[0]} | {ratios[1]} | {ratios[2]} | {r['min_dihedral_deg']:.2f} | "
                              f"{r['num_tets_min_dihedral_below_10']} | {r['num_tets_min_dihedral_below_15']} | "
-                             f"{away} | {fmt(vol)} | {fmt(area)} | {'yes' if r['ok'] else 'no'} |")
+                             f"{zone_text} | {fmt(vol)} | {fmt(area)} | {'yes' if r['ok'] else 'no'} |")
 
     print("| model | tool | vertices | tets | time s | peak MB | time / TetGen | memory / TetGen | vertices / TetGen | "
-          "min dihedral deg | <10 | <15 | <15 away from acute | volume error | facet-area error | checker ok |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "min dihedral deg | <10 | <15 | tets in zones | min dihedral outside | <15 outside | volume error | "
+          "facet-area error | checker ok |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for line in lines:
         print(line)
     print()
     print("Issue 16's targets per QualMesh run (vertices <= 1.2x TetGen's; time <= 1.0x at 100k tets or more, <= 2x "
-          "below; memory <= 1.5x; min dihedral >= TetGen's; tets < 10 deg <= half TetGen's):")
-    for name, tool, tets, t, m, v, dihedral_ok, below10_ok in summary:
+          "below; memory <= 1.5x; min dihedral >= TetGen's; tets < 10 deg <= half TetGen's; none < 15 deg outside the protection "
+          "zones):")
+    for name, tool, tets, t, m, v, dihedral_ok, below10_ok, outside_ok in summary:
         marks = [("vertices", v <= 1.2), ("time", t <= (1.0 if tets >= 100000 else 2.0)), ("memory", m is not None and m <= 1.5),
-                 ("min dihedral", dihedral_ok), ("<10", below10_ok)]
+                 ("min dihedral", dihedral_ok), ("<10", below10_ok), ("<15 outside zones", outside_ok)]
         print(f"- {name}, {tool}: met " + (", ".join(k for k, ok in marks if ok) or "nothing") + "; missed " +
               (", ".join(k for k, ok in marks if not ok) or "nothing"))
     for note in notes:

@@ -1,6 +1,8 @@
-// `qualmesh check MESH [--ref INPUT] [--json] [--require-regular | --no-regularity]`: re-checks a tetrahedral mesh
-// from scratch (ours or a peer's: TetGen, Gmsh, Medit): orientation, face matching, conformity to the input, the
-// (weighted) Delaunay property (counted; a defect only with --require-regular), quality figures. Exit 3 on defects.
+// `qualmesh check MESH [--ref INPUT] [--json] [--require-regular | --no-regularity] [--protection-angle DEG]`:
+// re-checks a tetrahedral mesh from scratch (ours or a peer's: TetGen, Gmsh, Medit): orientation, face matching,
+// conformity to the input, the (weighted) Delaunay property (counted; a defect only with --require-regular), quality
+// figures, over all tetrahedra and (with a PLC reference) outside the protection zones of its sharp input angles.
+// Exit 3 on defects.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -24,6 +26,7 @@ struct CheckArgs {
   double tolerance = 1e-9;
   bool require_regular = false;
   bool no_regularity = false;
+  double protection_angle = 60;
 };
 
 // A mesh of a CAD model has its boundary nodes on the CAD faces (fit_mesh_to_cad), not on the chords of the
@@ -63,6 +66,7 @@ int run_check(const CheckArgs& args) {
   if (!args.reference.empty() && !cad_reference) reference = load_input(args.reference, args.input_options);
   CheckOptions options;
   options.tolerance = args.tolerance;
+  options.protection_angle_deg = args.protection_angle;
   options.regularity = args.no_regularity     ? RegularityCheck::Skip
                        : args.require_regular ? RegularityCheck::Require
                                               : RegularityCheck::Report;
@@ -100,6 +104,11 @@ void register_check_command(CLI::App& app, int& exit_code) {
   auto* require = command->add_flag(
       "--require-regular", args->require_regular,
       "Count every locally non-regular face (weighted Delaunay test, point array 'weight' of a .vtu) as a defect");
+  command->add_option("--protection-angle", args->protection_angle,
+                      "With --ref: input angles below this (degrees) are sharp; quality is also reported outside "
+                      "their protection zones (0: not)")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
   command->add_flag("--no-regularity", args->no_regularity, "Skip the weighted Delaunay test")->excludes(require);
   command->callback([args, &exit_code] { exit_code = run_check(*args); });
 }

@@ -156,6 +156,7 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
   report.min_sigma = inf;
   report.min_volume = inf;
   std::vector<char> valid(mesh.tets.size(), 1);
+  std::vector<double> tet_min_dihedral(mesh.tets.size(), 0);  // for the protection figures
   std::vector<char> used(num_points, 0);
   std::vector<FaceUse> face_uses;
   face_uses.reserve(4 * mesh.tets.size());
@@ -181,6 +182,7 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
       ++report.num_nonpositive_tets;
       problems.add("tet " + std::to_string(t) + ": non-positive volume " + number(q.volume));
     }
+    tet_min_dihedral[t] = q.min_dihedral_deg;
     report.min_dihedral_deg = std::min(report.min_dihedral_deg, q.min_dihedral_deg);
     report.max_dihedral_deg = std::max(report.max_dihedral_deg, q.max_dihedral_deg);
     report.max_radius_edge = std::max(report.max_radius_edge, q.radius_edge);
@@ -425,6 +427,29 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
                      number(coverage.relative_error) + ")");
       }
       report.facets.push_back(coverage);
+    }
+
+    // 5. Quality outside the protection zones of the sharp input angles.
+    if (options.protection_angle_deg > 0) {
+      const check::ProtectionZones zones = check::find_protection_zones(plc, points, options.protection_angle_deg);
+      report.protection_checked = true;
+      report.protection_angle_deg = options.protection_angle_deg;
+      report.num_sharp_vertices = zones.num_sharp_vertices;
+      report.num_sharp_segments = zones.num_sharp_segments;
+      double min_outside = inf;
+      for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        if (!valid[t]) continue;
+        const auto& v = mesh.tets[t];
+        if (zones.point_inside[v[0]] || zones.point_inside[v[1]] || zones.point_inside[v[2]] ||
+            zones.point_inside[v[3]]) {
+          ++report.num_tets_in_protection_zone;
+          continue;
+        }
+        min_outside = std::min(min_outside, tet_min_dihedral[t]);
+        if (tet_min_dihedral[t] < 10) ++report.num_tets_outside_protection_below_10;
+        if (tet_min_dihedral[t] < 15) ++report.num_tets_outside_protection_below_15;
+      }
+      report.min_dihedral_outside_protection_deg = std::isfinite(min_outside) ? min_outside : 0;
     }
   }
   report.ok = report.num_problems == 0;

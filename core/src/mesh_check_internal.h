@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -87,5 +88,16 @@ struct RegularityTest {
 // Preconditions: every id < points.size().
 std::vector<std::size_t> find_non_regular(const std::vector<Point3>& points, const std::vector<double>& weights,
                                           const std::vector<RegularityTest>& tests);
+
+// The protection zones of the sharp input angles of `plc` (mesh_check_protection.cpp): protecting balls of radius
+// f (the local feature size) at every apex of a segment-segment or segment-facet angle below `angle_deg`, and
+// along every segment with a facet-facet angle below it. `points` in the same frame as `plc`.
+struct ProtectionZones {
+  double angle_deg = 0;
+  std::size_t num_sharp_vertices = 0;
+  std::size_t num_sharp_segments = 0;
+  std::vector<char> point_inside;  // per point: inside some protecting ball
+};
+ProtectionZones find_protection_zones(const Plc& plc, const std::vector<Point3>& points, double angle_deg);
 
 }  // namespace qualmesh::check

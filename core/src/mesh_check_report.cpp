@@ -126,6 +126,16 @@ std::string to_json(const CheckReport& r) {
   o.count("num_tets_min_dihedral_below_5", r.num_tets_min_dihedral_below_5);
   o.count("num_tets_min_dihedral_below_10", r.num_tets_min_dihedral_below_10);
   o.count("num_tets_min_dihedral_below_15", r.num_tets_min_dihedral_below_15);
+  o.boolean("protection_checked", r.protection_checked);
+  if (r.protection_checked) {
+    o.number("protection_angle_deg", r.protection_angle_deg);
+    o.count("num_sharp_vertices", r.num_sharp_vertices);
+    o.count("num_sharp_segments", r.num_sharp_segments);
+    o.count("num_tets_in_protection_zone", r.num_tets_in_protection_zone);
+    o.number("min_dihedral_outside_protection_deg", r.min_dihedral_outside_protection_deg);
+    o.count("num_tets_outside_protection_below_10", r.num_tets_outside_protection_below_10);
+    o.count("num_tets_outside_protection_below_15", r.num_tets_outside_protection_below_15);
+  }
   o.count("num_problems", r.num_problems);
   std::string problems = "[";
   for (std::size_t i = 0; i < r.problems.size(); ++i) problems += (i ? ", " : "") + json_string(r.problems[i]);
@@ -173,6 +183,13 @@ std::string to_text(const CheckReport& r) {
       << " deg, max radius-edge " << short_number(r.max_radius_edge) << ", min sigma " << short_number(r.min_sigma)
       << "; tets with min dihedral < 5/10/15 deg: " << r.num_tets_min_dihedral_below_5 << "/"
       << r.num_tets_min_dihedral_below_10 << "/" << r.num_tets_min_dihedral_below_15 << "\n";
+  if (r.protection_checked) {
+    out << "outside the protection zones of input angles < " << short_number(r.protection_angle_deg) << " deg ("
+        << r.num_sharp_vertices << " sharp vertices, " << r.num_sharp_segments << " sharp segments; "
+        << r.num_tets_in_protection_zone << " of " << r.num_tets << " tets inside): min dihedral "
+        << short_number(r.min_dihedral_outside_protection_deg) << " deg, tets with min dihedral < 10/15 deg: "
+        << r.num_tets_outside_protection_below_10 << "/" << r.num_tets_outside_protection_below_15 << "\n";
+  }
   out << "min dihedral histogram (" << short_number(r.dihedral_histogram_bin_deg) << " deg bins):";
   for (std::size_t i = 0; i < r.min_dihedral_histogram.size(); ++i) {
     if (r.min_dihedral_histogram[i]) {

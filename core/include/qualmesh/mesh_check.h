@@ -41,6 +41,9 @@ struct CheckOptions {
   // The weighted Delaunay (regularity) test: Skip, Report (count only: foreign meshes such as TetGen's constrained
   // Delaunay ones need not be regular), or Require (every violation is also a problem, so `ok` becomes false).
   RegularityCheck regularity = RegularityCheck::Report;
+  // With a reference: input angles below this (degrees) are sharp, and the tetrahedra in their protection zones are
+  // counted apart (CheckReport's protection figures). 0 skips it.
+  double protection_angle_deg = 60;
 };
 
 // How much of one input facet the mesh's boundary faces cover.
@@ -116,6 +119,21 @@ struct CheckReport {
   std::size_t num_tets_min_dihedral_below_5 = 0;
   std::size_t num_tets_min_dihedral_below_10 = 0;
   std::size_t num_tets_min_dihedral_below_15 = 0;
+
+  // Quality outside the protection zones of the reference's sharp input angles (issue 16): the second line, never
+  // the headline. Sharp: the input angles of the paper's Section 2 below options.protection_angle_deg. The zone:
+  // protecting balls of radius f (the local feature size at the centre) at every apex of a sharp segment-segment or
+  // segment-facet angle, and along every segment with a sharp facet-facet angle (a capsule of radius
+  // min(f(a), f(b), f(midpoint))). A tetrahedron is in the zone when one of its vertices lies in a ball.
+  // Set only with a reference and protection_angle_deg > 0 (protection_checked).
+  bool protection_checked = false;
+  double protection_angle_deg = 0;
+  std::size_t num_sharp_vertices = 0;          // apices of sharp segment-segment or segment-facet angles
+  std::size_t num_sharp_segments = 0;          // segments with a sharp facet-facet angle
+  std::size_t num_tets_in_protection_zone = 0;
+  double min_dihedral_outside_protection_deg = 0;  // 0 when every tetrahedron is in the zone
+  std::size_t num_tets_outside_protection_below_10 = 0;
+  std::size_t num_tets_outside_protection_below_15 = 0;
 
   // Verdict.
   std::size_t num_problems = 0;            // all problems found (problems keeps the first max_problems)

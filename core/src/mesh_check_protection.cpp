@@ -1,0 +1,129 @@
+// The mesh checker's protection zones (issue 16): where the reference PLC has input angles below a threshold (60
+// degrees by default), the tetrahedra near them are counted apart, so that quality "outside the protection zones"
+// is a second line beside the figures over all tetrahedra, measured the same way for every mesher (ours, TetGen,
+// Gmsh, Netgen, CGAL).
+//
+// The zone is a union of protecting balls, as in Cheng, Dey and Ramos ("Delaunay refinement for piecewise smooth
+// complexes") and CGAL Mesh_3's sharp features, sized by the paper's local feature size f (Section 2; the radius of
+// the smallest ball centred at x that meets two non-adjacent elements, local_feature_size.h):
+//  - sharp input angles: those validate_plc measures (Section 2's three kinds: segment-segment and segment-facet at
+//    a vertex, facet-facet along a segment) below the threshold;
+//  - a sharp vertex is the apex of a sharp segment-segment or segment-facet angle; its ball is centred at the
+//    vertex v with radius f(v), the distance from v to the nearest element not containing it;
+//  - a sharp segment carries a sharp facet-facet angle; its balls are centred all along the segment ab, with one
+//    radius min(f(a), f(b), f(midpoint)): their union is a capsule around ab.
+// A mesh point is inside the zone when it lies in some ball (closed); a tetrahedron is inside when one of its
+// vertices is. f(v) is about the spacing of the input's own vertices near v, so the zone is about one layer of
+// elements around each sharp feature; the report says how many tetrahedra it holds.
+//
+// Candidate (point, ball) pairs come from CGAL's box_intersection_d over the balls' bounding boxes and the points
+// (O(n log n + pairs)); each pair is then tested exactly by distance.
+#include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "local_feature_size.h"
+#include "mesh_check_internal.h"
+#include "qualmesh/plc_validate.h"
+
+namespace qualmesh::check {
+namespace {
+
+using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
+
+// A ball (a == b) or a capsule around segment ab, of radius r.
+struct ProtectingBalls {
+  Point3 a, b;
+  double radius;
+};
+
+double sq_distance_to_segment(const Point3& p, const Point3& a, const Point3& b) {
+  const Point3 ab{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const Point3 ap{p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+  const double length2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+  double t = length2 > 0 ? (ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / length2 : 0;
+  t = std::clamp(t, 0.0, 1.0);
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = ap[k] - t * ab[k];
+    d2 += d * d;
+  }
+  return d2;
+}
+
+}  // namespace
+
+ProtectionZones find_protection_zones(const Plc& plc, const std::vector<Point3>& points, double angle_deg) {
+  ProtectionZones zones;
+  zones.angle_deg = angle_deg;
+  zones.point_inside.assign(points.size(), 0);
+  if (!(angle_deg > 0) || plc.vertices.empty()) return zones;
+
+  ValidateOptions options;
+  options.acute_threshold_deg = angle_deg;
+  options.check_intersections = false;
+  options.require_closed = false;
+  options.max_problems_per_kind = std::numeric_limits<std::size_t>::max();  // every sharp angle, not the smallest
+  const ValidationReport angles = validate_plc(plc, options);
+  std::vector<char> sharp_vertex(plc.vertices.size(), 0);
+  std::vector<char> sharp_segment(angles.num_segments, 0);
+  for (const InputAngle& angle : angles.acute_angles) {
+    if (angle.kind == AngleKind::FacetFacet) {
+      if (angle.segment < sharp_segment.size()) sharp_segment[angle.segment] = 1;
+    } else if (angle.apex_vertex < sharp_vertex.size()) {
+      sharp_vertex[angle.apex_vertex] = 1;
+    }
+  }
+  for (char s : sharp_vertex) zones.num_sharp_vertices += s;
+  for (char s : sharp_segment) zones.num_sharp_segments += s;
+  if (zones.num_sharp_vertices == 0 && zones.num_sharp_segments == 0) return zones;
+
+  const LocalFeatureSize lfs(plc, plc_facet_triangles(plc));
+  const double diagonal = bounding_box(plc).diagonal();
+  // f is infinite only when every two elements are adjacent; the whole model is then one feature's neighbourhood.
+  const auto f = [&](const Point3& x) {
+    const double value = lfs(x);
+    return std::isfinite(value) ? value : diagonal;
+  };
+  std::vector<ProtectingBalls> balls;
+  for (std::size_t v = 0; v < plc.vertices.size(); ++v) {
+    if (sharp_vertex[v]) balls.push_back({plc.vertices[v], plc.vertices[v], f(plc.vertices[v])});
+  }
+  const std::vector<Segment> segments = collect_segments(plc);
+  for (std::size_t s = 0; s < segments.size() && s < sharp_segment.size(); ++s) {
+    if (!sharp_segment[s]) continue;
+    const Point3& a = plc.vertices[segments[s].a];
+    const Point3& b = plc.vertices[segments[s].b];
+    const Point3 mid{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
+    balls.push_back({a, b, std::min({f(a), f(b), f(mid)})});
+  }
+
+  std::vector<Box> ball_boxes, point_boxes;
+  ball_boxes.reserve(balls.size());
+  for (std::size_t i = 0; i < balls.size(); ++i) {
+    const ProtectingBalls& z = balls[i];
+    const double r = z.radius;
+    const CGAL::Bbox_3 box(std::min(z.a[0], z.b[0]) - r, std::min(z.a[1], z.b[1]) - r, std::min(z.a[2], z.b[2]) - r,
+                           std::max(z.a[0], z.b[0]) + r, std::max(z.a[1], z.b[1]) + r, std::max(z.a[2], z.b[2]) + r);
+    ball_boxes.emplace_back(box, i);
+  }
+  point_boxes.reserve(points.size());
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const Point3& x = points[p];
+    point_boxes.emplace_back(CGAL::Bbox_3(x[0], x[1], x[2], x[0], x[1], x[2]), p);
+  }
+  CGAL::box_intersection_d(
+      ball_boxes.begin(), ball_boxes.end(), point_boxes.begin(), point_boxes.end(),
+      [&](const Box& ball_box, const Box& point_box) {
+        const std::size_t p = point_box.info();
+        if (zones.point_inside[p]) return;
+        const ProtectingBalls& z = balls[ball_box.info()];
+        if (sq_distance_to_segment(points[p], z.a, z.b) <= z.radius * z.radius) zones.point_inside[p] = 1;
+      },
+      std::ptrdiff_t(10), CGAL::Box_intersection_d::CLOSED);
+  return zones;
+}
+
+}  // namespace qualmesh::check

@@ -1,0 +1,167 @@
+// Tests of the mesh checker's protection zones (mesh_check_protection.cpp, issue 16): the sharp input angles it
+// finds, and the tetrahedra it counts inside the protecting balls, against figures worked out by hand.
+//  - A cube has no input angle below 60 degrees; below 91 degrees every corner and edge is sharp.
+//  - A prism with a house-shaped cross-section whose ridge has a 36.9-degree apex angle: the ridge is the one sharp
+//    segment, its two ends the sharp vertices, and the local feature size along it is the distance to the eaves, so
+//    the zone is the capsule of that radius around the ridge. QualMesh's mesh of the prism is counted against that
+//    capsule directly.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "qualmesh/mesh_check.h"
+#include "qualmesh/mesher.h"
+#include "qualmesh/quality.h"
+
+namespace qualmesh {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Plc cube_plc() {
+  Plc plc;
+  for (int v = 0; v < 8; ++v) plc.vertices.push_back({double(v & 1), double((v >> 1) & 1), double((v >> 2) & 1)});
+  const Index loops[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+  for (const auto& loop : loops) {
+    Facet facet;
+    facet.polygons.push_back({loop[0], loop[1], loop[2], loop[3]});
+    plc.facets.push_back(facet);
+  }
+  return plc;
+}
+
+// Kuhn's split of the unit cube: six tetrahedra around the diagonal 0-7, positively oriented.
+TetMesh kuhn_cube() {
+  TetMesh mesh;
+  mesh.points = cube_plc().vertices;
+  int axes[3] = {0, 1, 2};
+  do {
+    const Index a = 1u << axes[0];
+    const Index b = a | (1u << axes[1]);
+    std::array<Index, 4> t{0, a, b, 7};
+    if (tet_signed_volume(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]) < 0) {
+      std::swap(t[0], t[1]);
+    }
+    mesh.tets.push_back(t);
+  } while (std::next_permutation(axes, axes + 3));
+  return mesh;
+}
+
+TEST(MeshCheckProtection, CubeHasNoSharpAngleBelowSixtyAndOnlySharpOnesBelowNinetyOne) {
+  const Plc plc = cube_plc();
+  const TetMesh mesh = kuhn_cube();
+  const CheckReport at60 = check_mesh(mesh, &plc);
+  ASSERT_TRUE(at60.ok);
+  EXPECT_TRUE(at60.protection_checked);
+  EXPECT_EQ(at60.num_sharp_vertices, 0u);
+  EXPECT_EQ(at60.num_sharp_segments, 0u);
+  EXPECT_EQ(at60.num_tets_in_protection_zone, 0u);
+  EXPECT_EQ(at60.min_dihedral_outside_protection_deg, at60.min_dihedral_deg);
+  EXPECT_EQ(at60.num_tets_outside_protection_below_15, at60.num_tets_min_dihedral_below_15);
+
+  CheckOptions options;
+  options.protection_angle_deg = 91;  // the right angles of the cube become sharp
+  const CheckReport at91 = check_mesh(mesh, &plc, options);
+  EXPECT_EQ(at91.num_sharp_vertices, 8u);
+  EXPECT_EQ(at91.num_sharp_segments, 12u);
+  EXPECT_EQ(at91.num_tets_in_protection_zone, 6u);  // every tetrahedron has a corner of the cube
+  EXPECT_EQ(at91.min_dihedral_outside_protection_deg, 0);
+  EXPECT_EQ(at91.num_tets_outside_protection_below_15, 0u);
+
+  options.protection_angle_deg = 0;
+  const CheckReport off = check_mesh(mesh, &plc, options);
+  EXPECT_FALSE(off.protection_checked);
+  EXPECT_EQ(to_json(off).find("num_tets_in_protection_zone"), std::string::npos);
+  EXPECT_NE(to_json(at60).find("\"num_tets_in_protection_zone\": 0"), std::string::npos);
+  EXPECT_NE(to_text(at91).find("8 sharp vertices, 12 sharp segments; 6 of 6 tets inside"), std::string::npos);
+}
+
+// A prism along z whose cross-section is a house: walls x = 0 and x = 20 from y = 0 to 40, and a roof whose ridge
+// A-A' (A = (10, 70, 0)) has an apex angle of 2 atan(10 / 30) = 36.9 degrees. The eaves turn by 161.6 degrees,
+// every other angle is a right one.
+Plc house_prism(double length) {
+  Plc plc;
+  const double xy[5][2] = {{0, 0}, {20, 0}, {20, 40}, {10, 70}, {0, 40}};
+  for (double z : {0.0, length})
+    for (const auto& p : xy) plc.vertices.push_back({p[0], p[1], z});
+  Facet cap, far_cap;
+  cap.polygons.push_back({0, 1, 2, 3, 4});
+  far_cap.polygons.push_back({5, 6, 7, 8, 9});
+  plc.facets = {cap, far_cap};
+  for (Index i = 0; i < 5; ++i) {
+    Facet side;
+    side.polygons.push_back({i, (i + 1) % 5, (i + 1) % 5 + 5, i + 5});
+    plc.facets.push_back(side);
+  }
+  return plc;
+}
+
+TEST(MeshCheckProtection, ZoneIsTheCapsuleOfTheLocalFeatureSizeAroundTheSharpRidge) {
+  const double length = 80;
+  const Plc plc = house_prism(length);
+  MeshOptions mesh_options;
+  mesh_options.max_edge_length = 6;
+  const MeshResult result = mesh_plc(plc, mesh_options);
+  const TetMesh& mesh = result.mesh;
+  ASSERT_GT(mesh.tets.size(), 500u);
+  const CheckReport report = check_mesh(mesh, &plc);
+  ASSERT_TRUE(report.ok) << to_text(report);
+  ASSERT_TRUE(report.protection_checked);
+  // The ridge's 36.9-degree corners of both caps (segment-segment, and the caps' roof edges against the other roof
+  // face) have their apex at A or A'; the only facet-facet angle below 60 degrees is the ridge's.
+  EXPECT_EQ(report.num_sharp_vertices, 2u);
+  EXPECT_EQ(report.num_sharp_segments, 1u);
+
+  // f at A, A' and along the ridge is h = sqrt(10^2 + 30^2), the distance to the eaves (every nearer element touches
+  // the ridge; the caps, non-adjacent to each other, are both within 40 of the ridge's midpoint only): a point is in the zone exactly when it lies within h of the segment A-A', which holds the roof and
+  // nothing below the eaves. Points within rounding of that distance may go either way.
+  const double h = std::sqrt(1000.0);
+  const auto distance_to_edge = [&](const Point3& p) {
+    const double z = std::clamp(p[2], 0.0, length);
+    return std::sqrt((p[0] - 10) * (p[0] - 10) + (p[1] - 70) * (p[1] - 70) + (p[2] - z) * (p[2] - z));
+  };
+  // The tets surely and maybe outside bound the reported outside set, its smallest angle and its count below 15.
+  std::size_t surely_inside = 0, maybe_inside = 0, surely_outside_below_15 = 0, maybe_outside_below_15 = 0;
+  const double inf = std::numeric_limits<double>::infinity();
+  double surely_outside_min = inf, maybe_outside_min = inf;
+  for (const auto& t : mesh.tets) {
+    double nearest = inf;
+    for (Index v : t) nearest = std::min(nearest, distance_to_edge(mesh.points[v]));
+    surely_inside += nearest < h * (1 - 1e-9);
+    maybe_inside += nearest <= h * (1 + 1e-9);
+    const double angle =
+        tet_quality(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]).min_dihedral_deg;
+    if (nearest > h * (1 + 1e-9)) {
+      surely_outside_min = std::min(surely_outside_min, angle);
+      surely_outside_below_15 += angle < 15;
+    }
+    if (nearest >= h * (1 - 1e-9)) {
+      maybe_outside_min = std::min(maybe_outside_min, angle);
+      maybe_outside_below_15 += angle < 15;
+    }
+  }
+  EXPECT_GE(report.num_tets_in_protection_zone, surely_inside);
+  EXPECT_LE(report.num_tets_in_protection_zone, maybe_inside);
+  ASSERT_LT(maybe_inside, mesh.tets.size()) << "the mesh has no tetrahedron away from the sharp ridge";
+  EXPECT_GE(report.min_dihedral_outside_protection_deg, maybe_outside_min);
+  EXPECT_LE(report.min_dihedral_outside_protection_deg, surely_outside_min);
+  EXPECT_GE(report.num_tets_outside_protection_below_15, surely_outside_below_15);
+  EXPECT_LE(report.num_tets_outside_protection_below_15, maybe_outside_below_15);
+  // The eaves' own vertices lie on the capsule (about a hundred tets go either way); the roof is inside.
+  EXPECT_GT(surely_inside, mesh.tets.size() / 10);
+
+  // Below 91 degrees the right angles become sharp too: all ten vertices (the eaves are apices of right angles
+  // between the caps and the edges along z), the ten edges of the caps and the two bottom edges along z (the eaves
+  // turn by 161.6 degrees): more tets inside.
+  CheckOptions options;
+  options.protection_angle_deg = 91;
+  const CheckReport at91 = check_mesh(mesh, &plc, options);
+  EXPECT_EQ(at91.num_sharp_vertices, 10u);
+  EXPECT_EQ(at91.num_sharp_segments, 13u);
+  EXPECT_GT(at91.num_tets_in_protection_zone, report.num_tets_in_protection_zone);
+}
+
+}  // namespace
+}  // namespace qualmesh
