@@ -35,9 +35,10 @@ QualMesh pumping alone: `qualmesh mesh --no-sliver-insertion` (no points inserte
 the flag exists.
 
 Columns: vertices and tets as the checker counts them, wall time of the mesher (best of --repeat; CGAL: the last
-sizing run, in a fresh python3), min dihedral angle, tets with min dihedral under 5/10/15 deg, QualMesh's own count of
-tets under its sliver angle (15 deg) that touch no acute input angle (issue 4's target is none; n/a for peers, which
-do not know the input's acute angles), relative volume error and worst relative facet-area error against the input,
+sizing run, in a fresh python3), min dihedral angle, tets with min dihedral under 5/10/15 deg, then the checker's
+second line for every tool alike: how many tets lie in the protection zones of the input angles below 60 deg, and
+outside them the tets under 15 deg (issue 16's target is none; `qualmesh check --protection-angle`), relative volume
+error and worst relative facet-area error against the input,
 whether the checker passes (structure and conformity), and locally non-regular faces (weighted Delaunay test; TetGen's output is constrained Delaunay and
 Mesh_3's a regular triangulation of weights it does not write, so only QualMesh's is expected to be 0).
 Not a test: a benchmark of one run on a possibly shared machine; compare the rows of one run only.
@@ -250,10 +251,7 @@ def run_peer(name, script, script_args, poly, out, args):
     return report if isinstance(report, str) else (seconds, report)
 
 
-away_from_acute = bench_tetgen.away_from_acute  # QualMesh's own count below 15 deg away from acute angles
-
-
-def row(model, tool, seconds, report, away="n/a"):
+def row(model, tool, seconds, report):
     if isinstance(report, str):
         text = " ".join(report.replace("|", "/").split())  # one table cell: no newline, no bar
         return f"| {model} | {tool} | {text} ||||||||||||"
@@ -261,9 +259,11 @@ def row(model, tool, seconds, report, away="n/a"):
     vol = report.get("volume_relative_error")
     area = report.get("max_facet_area_relative_error")
     fmt = lambda x: "n/a" if x is None else f"{x:.1e}"  # noqa: E731
+    zones = bench_tetgen.outside_zones(report)
+    zone_text = "n/a | n/a" if zones is None else f"{zones[0]} | {zones[2]}"
     return (f"| {model} | {tool} | {vertices} | {report['num_tets']} | {seconds:.2f} | "
             f"{report['min_dihedral_deg']:.2f} | {report['num_tets_min_dihedral_below_5']} | "
-            f"{report['num_tets_min_dihedral_below_10']} | {report['num_tets_min_dihedral_below_15']} | {away} | "
+            f"{report['num_tets_min_dihedral_below_10']} | {report['num_tets_min_dihedral_below_15']} | {zone_text} | "
             f"{fmt(vol)} | {fmt(area)} | {'yes' if report['ok'] else 'no (' + str(report['num_problems']) + ')'} | "
             f"{report.get('num_non_regular_faces', 'n/a')} |")
 
@@ -335,7 +335,7 @@ def main():
                                                      f"{proc.stderr.strip()[-100:]}".replace("|", "/")))
                     continue
                 report = check(args.qualmesh, vtu, poly)
-                lines.append(row(name, tool, best, report, away_from_acute(proc.stdout)))
+                lines.append(row(name, tool, best, report))
                 if not extra and not isinstance(report, str):
                     default_report, default_vtu = report, vtu
             if default_report is None:
@@ -397,9 +397,9 @@ def main():
                     result = run_peer(tool, script, script_args, poly, out, args)
                     lines.append(row(name, tool, 0, result) if isinstance(result, str) else row(name, tool, *result))
 
-    print("| model | tool | vertices | tets | time s | min dihedral deg | <5 | <10 | <15 | <15 away from acute | "
-          "volume error | facet-area error | checker ok | non-regular faces |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| model | tool | vertices | tets | time s | min dihedral deg | <5 | <10 | <15 | tets in zones | "
+          "<15 outside zones | volume error | facet-area error | checker ok | non-regular faces |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for line in lines:
         print(line)
     print()
