@@ -222,7 +222,8 @@ def main():
                 vol, area = r.get("volume_relative_error"), r.get("max_facet_area_relative_error")
                 fmt = lambda x: "n/a" if x is None else f"{x:.1e}"  # noqa: E731
                 zone_text = ("n/a | n/a | n/a" if zones is None else
-                             f"{zones[0]} ({100 * zones[0] / max(r['num_tets'], 1):.1f}%) | {zones[1]:.2f} | {zones[2]}")
+                             f"{zones[0]} ({100 * zones[0] / max(r['num_tets'], 1):.1f}%) | "
+                             f"{'none outside' if zones[0] == r['num_tets'] else f'{zones[1]:.2f}'} | {zones[2]}")
                 lines.append(f"| {name} | {tool} | {vertices} | {r['num_tets']} | {seconds:.2f} | {'n/a' if rss is None else f'{rss:.0f}'} | "
                              f"{ratios[0]} | {ratios[1]} | {ratios[2]} | {r['min_dihedral_deg']:.2f} | "
                              f"{r['num_tets_min_dihedral_below_10']} | {r['num_tets_min_dihedral_below_15']} | "
