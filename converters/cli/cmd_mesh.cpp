@@ -22,6 +22,7 @@
 #include "mesh_checks.h"
 #include "mesh_limits.h"
 #include "qualmesh/error.h"
+#include "qualmesh/mesh_check.h"
 #include "qualmesh/mesh_io.h"
 #include "qualmesh/mesher.h"
 #include "qualmesh/plc_io.h"
@@ -201,6 +202,15 @@ int run_mesh(MeshArgs& args) {
   std::printf("away from acute input angles: min dihedral %.4g deg, %zu tetrahedra below %.4g deg\n",
               st.min_dihedral_away_from_acute_deg, st.num_tets_below_sliver_angle_away_from_acute,
               args.options.sliver_angle_deg);
+  if (is_plc_path(args.input)) {
+    // The checker's second line (`qualmesh check --ref`): the same figures for every mesher's output.
+    const CheckReport zones = check_protection_zones(result.mesh, plc, 60);
+    std::printf("protection:  outside the zones of input angles < 60 deg (%zu sharp vertices, %zu sharp segments; %zu "
+                "of %zu tetrahedra inside): min dihedral %.4g deg, %zu/%zu tetrahedra below 10/15 deg\n",
+                zones.num_sharp_vertices, zones.num_sharp_segments, zones.num_tets_in_protection_zone,
+                zones.num_tets, zones.min_dihedral_outside_protection_deg, zones.num_tets_outside_protection_below_10,
+                zones.num_tets_outside_protection_below_15);
+  }
   if (args.options.pump) {
     std::printf("rule 4:      %zu weighted-encroached elements split, %zu vertices added\n",
                 st.num_rule4_encroachments, st.num_rule4_vertices);

@@ -126,6 +126,31 @@ class FacetGrid {
   std::vector<std::vector<Index>> cells_;
 };
 
+// CheckReport's protection figures (the reference and the points in one frame; valid: tets with sound indices).
+void fill_protection(CheckReport& report, const Plc& plc, const std::vector<Point3>& points,
+                     const std::vector<std::array<Index, 4>>& tets, const std::vector<char>& valid,
+                     const std::vector<double>& tet_min_dihedral, double angle_deg) {
+  const check::ProtectionZones zones = check::find_protection_zones(plc, points, angle_deg);
+  report.protection_checked = true;
+  report.protection_angle_deg = angle_deg;
+  report.num_sharp_vertices = zones.num_sharp_vertices;
+  report.num_sharp_segments = zones.num_sharp_segments;
+  double min_outside = std::numeric_limits<double>::infinity();
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    if (!valid[t]) continue;
+    const auto& v = tets[t];
+    if (zones.point_inside[v[0]] || zones.point_inside[v[1]] || zones.point_inside[v[2]] ||
+        zones.point_inside[v[3]]) {
+      ++report.num_tets_in_protection_zone;
+      continue;
+    }
+    min_outside = std::min(min_outside, tet_min_dihedral[t]);
+    if (tet_min_dihedral[t] < 10) ++report.num_tets_outside_protection_below_10;
+    if (tet_min_dihedral[t] < 15) ++report.num_tets_outside_protection_below_15;
+  }
+  report.min_dihedral_outside_protection_deg = std::isfinite(min_outside) ? min_outside : 0;
+}
+
 }  // namespace
 
 CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOptions& options) {
@@ -430,29 +455,31 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
     }
 
     // 5. Quality outside the protection zones of the sharp input angles.
-    if (options.protection_angle_deg > 0) {
-      const check::ProtectionZones zones = check::find_protection_zones(plc, points, options.protection_angle_deg);
-      report.protection_checked = true;
-      report.protection_angle_deg = options.protection_angle_deg;
-      report.num_sharp_vertices = zones.num_sharp_vertices;
-      report.num_sharp_segments = zones.num_sharp_segments;
-      double min_outside = inf;
-      for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-        if (!valid[t]) continue;
-        const auto& v = mesh.tets[t];
-        if (zones.point_inside[v[0]] || zones.point_inside[v[1]] || zones.point_inside[v[2]] ||
-            zones.point_inside[v[3]]) {
-          ++report.num_tets_in_protection_zone;
-          continue;
-        }
-        min_outside = std::min(min_outside, tet_min_dihedral[t]);
-        if (tet_min_dihedral[t] < 10) ++report.num_tets_outside_protection_below_10;
-        if (tet_min_dihedral[t] < 15) ++report.num_tets_outside_protection_below_15;
-      }
-      report.min_dihedral_outside_protection_deg = std::isfinite(min_outside) ? min_outside : 0;
-    }
+    if (options.protection_angle_deg > 0)
+      fill_protection(report, plc, points, mesh.tets, valid, tet_min_dihedral, options.protection_angle_deg);
   }
   report.ok = report.num_problems == 0;
+  return report;
+}
+
+CheckReport check_protection_zones(const TetMesh& mesh, const Plc& reference, double angle_deg) {
+  CheckReport report;
+  report.num_points = mesh.points.size();
+  report.num_tets = mesh.tets.size();
+  if (!(angle_deg > 0)) return report;
+  const check::LocalFrame frame = check::make_local_frame(reference, mesh.points);
+  const std::vector<Point3> points = frame.local(mesh.points);
+  std::vector<char> valid(mesh.tets.size(), 1);
+  std::vector<double> tet_min_dihedral(mesh.tets.size(), 0);
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& v = mesh.tets[t];
+    for (int i = 0; i < 4; ++i) valid[t] = valid[t] && v[i] < points.size();
+    if (valid[t]) {
+      tet_min_dihedral[t] =
+          tet_quality(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]).min_dihedral_deg;
+    }
+  }
+  fill_protection(report, frame.local(reference), points, mesh.tets, valid, tet_min_dihedral, angle_deg);
   return report;
 }
 

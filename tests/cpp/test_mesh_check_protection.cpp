@@ -4,16 +4,20 @@
 //  - A prism with a house-shaped cross-section whose ridge has a 36.9-degree apex angle: the ridge is the one sharp
 //    segment, its two ends the sharp vertices, and the local feature size along it is the distance to the eaves, so
 //    the zone is the capsule of that radius around the ridge. QualMesh's mesh of the prism is counted against that
-//    capsule directly.
+//    capsule directly, and `qualmesh mesh`'s summary line shows the checker's figures.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 
 #include "qualmesh/mesh_check.h"
+#include "qualmesh/mesh_io.h"
 #include "qualmesh/mesher.h"
+#include "qualmesh/plc_io.h"
 #include "qualmesh/quality.h"
+#include "test_support.h"
 
 namespace qualmesh {
 namespace {
@@ -152,6 +156,15 @@ TEST(MeshCheckProtection, ZoneIsTheCapsuleOfTheLocalFeatureSizeAroundTheSharpRid
   // The eaves' own vertices lie on the capsule (about a hundred tets go either way); the roof is inside.
   EXPECT_GT(surely_inside, mesh.tets.size() / 10);
 
+  // The mesher's summary computes the same figures without the other checks.
+  const CheckReport alone = check_protection_zones(mesh, plc, 60);
+  EXPECT_EQ(alone.num_sharp_vertices, report.num_sharp_vertices);
+  EXPECT_EQ(alone.num_sharp_segments, report.num_sharp_segments);
+  EXPECT_EQ(alone.num_tets_in_protection_zone, report.num_tets_in_protection_zone);
+  EXPECT_EQ(alone.min_dihedral_outside_protection_deg, report.min_dihedral_outside_protection_deg);
+  EXPECT_EQ(alone.num_tets_outside_protection_below_10, report.num_tets_outside_protection_below_10);
+  EXPECT_EQ(alone.num_tets_outside_protection_below_15, report.num_tets_outside_protection_below_15);
+
   // Below 91 degrees the right angles become sharp too: all ten vertices (the eaves are apices of right angles
   // between the caps and the edges along z), the ten edges of the caps and the two bottom edges along z (the eaves
   // turn by 161.6 degrees): more tets inside.
@@ -161,6 +174,35 @@ TEST(MeshCheckProtection, ZoneIsTheCapsuleOfTheLocalFeatureSizeAroundTheSharpRid
   EXPECT_EQ(at91.num_sharp_vertices, 10u);
   EXPECT_EQ(at91.num_sharp_segments, 13u);
   EXPECT_GT(at91.num_tets_in_protection_zone, report.num_tets_in_protection_zone);
+}
+
+// Everything `command` prints on stdout, and its exit status.
+std::string run(const std::string& command, int& status) {
+  std::string out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return out;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.append(buffer, n);
+  status = pclose(pipe);
+  return out;
+}
+
+TEST(MeshCheckProtection, MeshSummaryHasTheCheckersFigures) {
+  const auto dir = test::temp_dir("protection-summary");
+  const std::string poly = (dir / "house.poly").string(), vtu = (dir / "house.vtu").string();
+  write_plc(house_prism(80), poly);
+  int status = -1;
+  const std::string summary = run(test::qualmesh_exe() + " mesh " + poly + " -o " + vtu + " --max-edge 6", status);
+  ASSERT_EQ(status, 0) << summary;
+  const Plc plc = house_prism(80);
+  const CheckReport report = check_mesh(read_tet_mesh(vtu), &plc);
+  char line[300];
+  std::snprintf(line, sizeof line,
+                "protection:  outside the zones of input angles < 60 deg (2 sharp vertices, 1 sharp segments; %zu of "
+                "%zu tetrahedra inside): min dihedral %.4g deg, %zu/%zu tetrahedra below 10/15 deg\n",
+                report.num_tets_in_protection_zone, report.num_tets, report.min_dihedral_outside_protection_deg,
+                report.num_tets_outside_protection_below_10, report.num_tets_outside_protection_below_15);
+  EXPECT_NE(summary.find(line), std::string::npos) << "expected: " << line << "in:\n" << summary;
 }
 
 }  // namespace
