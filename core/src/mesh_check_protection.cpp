@@ -13,8 +13,10 @@
 //  - a sharp segment carries a sharp facet-facet angle; its balls are centred all along the segment ab, with one
 //    radius min(f(a), f(b), f(midpoint)): their union is a capsule around ab.
 // A mesh point is inside the zone when it lies in some ball (closed); a tetrahedron is inside when one of its
-// vertices is. f(v) is about the spacing of the input's own vertices near v, so the zone is about one layer of
-// elements around each sharp feature; the report says how many tetrahedra it holds.
+// vertices is. f(v) is about the spacing of the input's own vertices near v, so around an isolated sharp feature the
+// zone is a layer of elements a few deep. On a tessellated curved surface, though, most vertices are apices of
+// triangle corners below 60 degrees, and the zones hold most tetrahedra near the surface (fandisk.off: 77% of
+// QualMesh's, 68% of TetGen's): the report says how many, and the figures over all tetrahedra stay the headline.
 //
 // Candidate (point, ball) pairs come from CGAL's box_intersection_d over the balls' bounding boxes and the points
 // (O(n log n + pairs)); each pair is then tested exactly by distance.
