@@ -32,7 +32,6 @@ Default models: the closed, valid files of ../shared/data/plc/ plus examples/l_b
 """
 import argparse
 import json
-import re
 import shutil
 import subprocess
 import sys
