@@ -93,7 +93,6 @@ std::vector<std::size_t> find_non_regular(const std::vector<Point3>& points, con
 // f (the local feature size) at every apex of a segment-segment or segment-facet angle below `angle_deg`, and
 // along every segment with a facet-facet angle below it. `points` in the same frame as `plc`.
 struct ProtectionZones {
-  double angle_deg = 0;
   std::size_t num_sharp_vertices = 0;
   std::size_t num_sharp_segments = 0;
   std::vector<char> point_inside;  // per point: inside some protecting ball

@@ -59,7 +59,6 @@ double sq_distance_to_segment(const Point3& p, const Point3& a, const Point3& b)
 
 ProtectionZones find_protection_zones(const Plc& plc, const std::vector<Point3>& points, double angle_deg) {
   ProtectionZones zones;
-  zones.angle_deg = angle_deg;
   zones.point_inside.assign(points.size(), 0);
   if (!(angle_deg > 0) || plc.vertices.empty()) return zones;
 

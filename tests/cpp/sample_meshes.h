@@ -1,6 +1,7 @@
 // Small hand-built meshes for the reader and writer tests: Kuhn's 6-tetrahedron cube with two regions and its
 // hull triangles (sample_mesh), and the same made second order with mid-nodes at the edge midpoints, plus the
-// tetrahedron edges on the cube's 12 edges as marked edges (sample_mesh_quadratic).
+// tetrahedron edges on the cube's 12 edges as marked edges (sample_mesh_quadratic). For the checker and mesher
+// tests: the unit cube as a PLC (unit_cube_plc) and Kuhn's split of it (kuhn_unit_cube).
 #pragma once
 
 #include <algorithm>
@@ -8,10 +9,42 @@
 #include <map>
 #include <utility>
 
+#include "qualmesh/plc.h"
 #include "qualmesh/quality.h"
 #include "qualmesh/tet_mesh.h"
 
 namespace qualmesh {
+
+// The unit cube [0, 1]^3: vertex v at (bit 0, bit 1, bit 2) of v, six square facets without markers.
+inline Plc unit_cube_plc() {
+  Plc plc;
+  for (int v = 0; v < 8; ++v) plc.vertices.push_back({double(v & 1), double((v >> 1) & 1), double((v >> 2) & 1)});
+  const Index loops[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+  for (const auto& loop : loops) {
+    Facet facet;
+    facet.polygons.push_back({loop[0], loop[1], loop[2], loop[3]});
+    plc.facets.push_back(facet);
+  }
+  return plc;
+}
+
+// Kuhn's split of unit_cube_plc's cube: the six tetrahedra around the diagonal 0-7, one per permutation of the
+// axes, positively oriented.
+inline TetMesh kuhn_unit_cube() {
+  TetMesh mesh;
+  mesh.points = unit_cube_plc().vertices;
+  int axes[3] = {0, 1, 2};
+  do {
+    const Index a = 1u << axes[0];
+    const Index b = a | (1u << axes[1]);
+    std::array<Index, 4> t{0, a, b, 7};
+    if (tet_signed_volume(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]) < 0) {
+      std::swap(t[0], t[1]);
+    }
+    mesh.tets.push_back(t);
+  } while (std::next_permutation(axes, axes + 3));
+  return mesh;
+}
 
 // Kuhn's 6-tetrahedron unit cube, scaled by awkward numbers so that exact coordinate round trips are tested; two
 // regions, the 12 hull triangles with the cube face (1..6) as marker and facet index.

@@ -6,24 +6,13 @@
 #include <cmath>
 
 #include "qualmesh/mesher.h"
+#include "sample_meshes.h"
 
 namespace qualmesh {
 namespace {
 
-Plc unit_cube() {
-  Plc plc;
-  for (int v = 0; v < 8; ++v) plc.vertices.push_back({double(v & 1), double((v >> 1) & 1), double(v >> 2)});
-  const Index loops[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
-  for (const auto& l : loops) {
-    Facet f;
-    f.polygons.push_back({l[0], l[1], l[2], l[3]});
-    plc.facets.push_back(f);
-  }
-  return plc;
-}
-
 TEST(Cancel, StopsRefinementAndReportsCancelled) {
-  const Plc plc = unit_cube();
+  const Plc plc = unit_cube_plc();
   MeshOptions options;
   options.max_edge_length = 0.05;
   std::size_t calls = 0;
@@ -35,7 +24,7 @@ TEST(Cancel, StopsRefinementAndReportsCancelled) {
 }
 
 TEST(Cancel, ACallbackThatNeverStopsChangesNothing) {
-  const Plc plc = unit_cube();
+  const Plc plc = unit_cube_plc();
   MeshOptions options;
   options.max_edge_length = 0.2;
   const MeshResult plain = mesh_plc(plc, options);

@@ -21,6 +21,7 @@
 #include "qualmesh/mesh_check.h"
 #include "qualmesh/mesh_io.h"
 #include "qualmesh/quality.h"
+#include "sample_meshes.h"
 #include "test_support.h"
 
 namespace qualmesh {
@@ -63,20 +64,6 @@ void orient(TetMesh& mesh) {
   }
 }
 
-// Kuhn's split: the six tetrahedra along the diagonal 0-7, one per permutation of the axes.
-TetMesh kuhn_cube() {
-  TetMesh mesh;
-  mesh.points = cube_points();
-  int axes[3] = {0, 1, 2};
-  do {
-    const Index a = 1u << axes[0];
-    const Index b = a | (1u << axes[1]);
-    mesh.tets.push_back({0, a, b, 7});
-  } while (std::next_permutation(axes, axes + 3));
-  orient(mesh);
-  return mesh;
-}
-
 // The 5-tetrahedron split: a central regular tetrahedron (0, 3, 5, 6) and four corners.
 TetMesh five_tet_cube() {
   TetMesh mesh;
@@ -88,7 +75,7 @@ TetMesh five_tet_cube() {
 
 TEST(MeshCheck, KuhnCubeConforms) {
   const Plc plc = cube_plc();
-  const CheckReport r = check_mesh(kuhn_cube(), &plc);
+  const CheckReport r = check_mesh(kuhn_unit_cube(), &plc);
   EXPECT_TRUE(r.ok) << to_text(r);
   EXPECT_EQ(r.num_points, 8u);
   EXPECT_EQ(r.num_tets, 6u);
@@ -133,7 +120,7 @@ TEST(MeshCheck, FacetsFlatOnlyToATolerancePassWithinIt) {
   // within twice that, far beyond the default distance tolerance of 1e-9 D, and passes.
   Plc plc = cube_plc();
   plc.vertices[7][2] += 1e-7;
-  TetMesh mesh = kuhn_cube();
+  TetMesh mesh = kuhn_unit_cube();
   mesh.points = plc.vertices;
   const CheckReport r = check_mesh(mesh, &plc);
   EXPECT_TRUE(r.ok) << to_text(r);
@@ -148,7 +135,7 @@ TEST(MeshCheck, FacetsFlatOnlyToATolerancePassWithinIt) {
 
 TEST(MeshCheck, FlippedTetIsReported) {
   const Plc plc = cube_plc();
-  TetMesh mesh = kuhn_cube();
+  TetMesh mesh = kuhn_unit_cube();
   std::swap(mesh.tets[2][0], mesh.tets[2][1]);
   const CheckReport r = check_mesh(mesh, &plc);
   EXPECT_FALSE(r.ok);
@@ -161,7 +148,7 @@ TEST(MeshCheck, FlippedTetIsReported) {
 
 TEST(MeshCheck, MissingTetLeavesAGap) {
   const Plc plc = cube_plc();
-  TetMesh mesh = kuhn_cube();
+  TetMesh mesh = kuhn_unit_cube();
   mesh.tets.erase(mesh.tets.begin() + 3);
   const CheckReport r = check_mesh(mesh, &plc);
   EXPECT_FALSE(r.ok);
@@ -173,7 +160,7 @@ TEST(MeshCheck, MissingTetLeavesAGap) {
 
 TEST(MeshCheck, DuplicatedTetIsReported) {
   const Plc plc = cube_plc();
-  TetMesh mesh = kuhn_cube();
+  TetMesh mesh = kuhn_unit_cube();
   mesh.tets.push_back(mesh.tets[0]);
   const CheckReport r = check_mesh(mesh, &plc);
   EXPECT_FALSE(r.ok);
@@ -183,7 +170,7 @@ TEST(MeshCheck, DuplicatedTetIsReported) {
 }
 
 TEST(MeshCheck, WithoutReferenceOnlyStructure) {
-  const CheckReport r = check_mesh(kuhn_cube(), nullptr);
+  const CheckReport r = check_mesh(kuhn_unit_cube(), nullptr);
   EXPECT_TRUE(r.ok) << to_text(r);
   EXPECT_FALSE(r.has_reference);
   EXPECT_EQ(r.num_boundary_faces, 12u);
@@ -191,7 +178,7 @@ TEST(MeshCheck, WithoutReferenceOnlyStructure) {
 
 TEST(MeshCheck, RegionInterfaceNeedsAnInternalFacet) {
   const Plc plc = cube_plc();
-  TetMesh mesh = kuhn_cube();
+  TetMesh mesh = kuhn_unit_cube();
   mesh.tet_region = {1, 1, 1, 2, 2, 2};
   const CheckReport r = check_mesh(mesh, &plc);
   EXPECT_GT(r.num_region_interface_faces, 0u);
@@ -205,7 +192,7 @@ TEST(MeshCheck, InternalFacetInsideOneRegionIsCoveredByInteriorFaces) {
   Facet internal;
   internal.polygons.push_back({0, 3, 7, 4});
   plc.facets.push_back(internal);
-  const CheckReport r = check_mesh(kuhn_cube(), &plc);
+  const CheckReport r = check_mesh(kuhn_unit_cube(), &plc);
   EXPECT_EQ(r.num_interior_faces_on_input, 2u);
   ASSERT_EQ(r.facets.size(), 7u);
   EXPECT_NEAR(r.facets[6].area, std::sqrt(2.0), 1e-15);
@@ -240,7 +227,7 @@ TEST(MeshCheck, ReferenceVolumeOfNestedAndDisjointShells) {
 TEST(MeshCheck, OpenInputEnclosesNothing) {
   Plc plc = cube_plc();
   plc.facets.pop_back();
-  const CheckReport r = check_mesh(kuhn_cube(), &plc);
+  const CheckReport r = check_mesh(kuhn_unit_cube(), &plc);
   EXPECT_EQ(r.reference_volume, 0.0) << r.reference_volume_method;
   EXPECT_EQ(r.num_faces_off_input, 2u);  // the two faces on the missing facet
   EXPECT_FALSE(r.ok);
@@ -297,7 +284,7 @@ TEST(MeshCheck, FacetWithAHoleLoopAndAHolePoint) {
 
 TEST(MeshCheck, JsonHasStableKeysAndExactNumbers) {
   const Plc plc = cube_plc();
-  const CheckReport r = check_mesh(kuhn_cube(), &plc);
+  const CheckReport r = check_mesh(kuhn_unit_cube(), &plc);
   const std::string json = to_json(r);
   for (const char* key : {"\"ok\": true", "\"num_tets\": 6", "\"reference_volume\": 1",
                           "\"num_boundary_faces\": 12", "\"min_dihedral_deg\": 45", "\"problems\": []"}) {
@@ -390,7 +377,7 @@ TEST(MeshCheckRegularity, MalformedWeightsAreProblems) {
 
 TEST(MeshCheckRegularity, CosphericalKuhnCubeIsDelaunay) {
   // All eight vertices on one sphere: every test is "orthogonal", which is not a violation.
-  const CheckReport r = check_mesh(kuhn_cube(), nullptr);
+  const CheckReport r = check_mesh(kuhn_unit_cube(), nullptr);
   EXPECT_TRUE(r.weighted_delaunay_checked);
   EXPECT_EQ(r.num_regularity_tested_faces, 6u);
   EXPECT_EQ(r.num_non_regular_faces, 0u);

@@ -17,45 +17,15 @@
 #include "qualmesh/mesher.h"
 #include "qualmesh/plc_io.h"
 #include "qualmesh/quality.h"
+#include "sample_meshes.h"
 #include "test_support.h"
 
 namespace qualmesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-Plc cube_plc() {
-  Plc plc;
-  for (int v = 0; v < 8; ++v) plc.vertices.push_back({double(v & 1), double((v >> 1) & 1), double((v >> 2) & 1)});
-  const Index loops[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
-  for (const auto& loop : loops) {
-    Facet facet;
-    facet.polygons.push_back({loop[0], loop[1], loop[2], loop[3]});
-    plc.facets.push_back(facet);
-  }
-  return plc;
-}
-
-// Kuhn's split of the unit cube: six tetrahedra around the diagonal 0-7, positively oriented.
-TetMesh kuhn_cube() {
-  TetMesh mesh;
-  mesh.points = cube_plc().vertices;
-  int axes[3] = {0, 1, 2};
-  do {
-    const Index a = 1u << axes[0];
-    const Index b = a | (1u << axes[1]);
-    std::array<Index, 4> t{0, a, b, 7};
-    if (tet_signed_volume(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], mesh.points[t[3]]) < 0) {
-      std::swap(t[0], t[1]);
-    }
-    mesh.tets.push_back(t);
-  } while (std::next_permutation(axes, axes + 3));
-  return mesh;
-}
-
 TEST(MeshCheckProtection, CubeHasNoSharpAngleBelowSixtyAndOnlySharpOnesBelowNinetyOne) {
-  const Plc plc = cube_plc();
-  const TetMesh mesh = kuhn_cube();
+  const Plc plc = unit_cube_plc();
+  const TetMesh mesh = kuhn_unit_cube();
   const CheckReport at60 = check_mesh(mesh, &plc);
   ASSERT_TRUE(at60.ok);
   EXPECT_TRUE(at60.protection_checked);
