@@ -6,7 +6,8 @@
 // libstdc++, so C++ objects (Plc, std::string, std::vector) pass by pointer. The entry point is extern "C" and its
 // name carries the interface version: change any type below (or what the plugin does with it) and bump the version,
 // so that a stale plugin fails to load by name instead of misreading memory. v2: CadOptions carries the size field
-// (size, min_size, curvature_elements, gradation, local_sizes, surface_mesh) and LoadResult the size used.
+// (size, min_size, curvature_elements, gradation, local_sizes, surface_mesh) and LoadResult the size used. measure v3:
+// CadMeasureOptions, and CadConformity's sharp features.
 #pragma once
 
 #include <string>
@@ -24,7 +25,7 @@ inline constexpr const char* kPluginFileName = "libqualmesh_cad_plugin.so";
 inline constexpr const char* kLoadCadSymbol = "qualmesh_cad_plugin_load_cad_v2";
 // Names of the other entry points: fit_mesh_to_cad (FitMeshFn), measure_against_cad (MeasureFn).
 inline constexpr const char* kFitMeshSymbol = "qualmesh_cad_plugin_fit_mesh_v2";
-inline constexpr const char* kMeasureSymbol = "qualmesh_cad_plugin_measure_v2";
+inline constexpr const char* kMeasureSymbol = "qualmesh_cad_plugin_measure_v3";
 // project_onto_cad (ProjectFn); optional: a plugin without it leaves the mesher's boundary points on the facets.
 inline constexpr const char* kProjectSymbol = "qualmesh_cad_plugin_project_v2";
 
@@ -67,7 +68,7 @@ struct MeasureResult {
   CadConformity conformity;  // Ok: measure_against_cad's result
 };
 using MeasureFn = void (*)(const char* path, const CadOptions* options, const TetMesh* mesh,
-                           MeasureResult* result) noexcept;
+                           const CadMeasureOptions* measure, MeasureResult* result) noexcept;
 
 // project_onto_cad(path, *options, edge, face, xyz as a Point3): 1 when xyz was moved onto the CAD edge or face, 0
 // when not (nothing to move, or any failure: the point stays where the mesher put it). Never throws.

@@ -97,12 +97,13 @@ extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_fit_m
   cad_plugin::guarded(&result->outcome, [&] { result->report = fit_mesh_to_cad(path, *options, *mesh, *fit_options); });
 }
 
-extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_measure_v2(
+extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_measure_v3(
     const char* path, const qualmesh::CadOptions* options, const qualmesh::TetMesh* mesh,
-    qualmesh::cad_plugin::MeasureResult* result) noexcept {
+    const qualmesh::CadMeasureOptions* measure, qualmesh::cad_plugin::MeasureResult* result) noexcept {
   using namespace qualmesh;
-  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_measure_v2), cad_plugin::MeasureFn>);
-  cad_plugin::guarded(&result->outcome, [&] { result->conformity = measure_against_cad(path, *options, *mesh); });
+  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_measure_v3), cad_plugin::MeasureFn>);
+  cad_plugin::guarded(&result->outcome,
+                      [&] { result->conformity = measure_against_cad(path, *options, *mesh, *measure); });
 }
 
 extern "C" __attribute__((visibility("default"))) int qualmesh_cad_plugin_project_v2(

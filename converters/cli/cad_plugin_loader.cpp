@@ -123,10 +123,11 @@ CadFitReport fit_mesh_through_plugin(const std::string& path, const CadOptions& 
   return result.report;
 }
 
-CadConformity measure_through_plugin(const std::string& path, const CadOptions& options, const TetMesh& mesh) {
+CadConformity measure_through_plugin(const std::string& path, const CadOptions& options, const TetMesh& mesh,
+                                     const CadMeasureOptions& measure) {
   const PluginHandle& plugin = plugin_or_throw(path);
   cad_plugin::MeasureResult result;
-  plugin.measure(path.c_str(), &options, &mesh, &result);
+  plugin.measure(path.c_str(), &options, &mesh, &measure, &result);
   rethrow(result.outcome);
   return result.conformity;
 }

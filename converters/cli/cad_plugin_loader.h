@@ -29,8 +29,9 @@ Plc read_cad_through_plugin(const std::string& path, const CadOptions& options, 
 CadFitReport fit_mesh_through_plugin(const std::string& path, const CadOptions& options,
                                      const CadFitOptions& fit_options, TetMesh& mesh);
 
-// measure_against_cad(path, options, mesh) through the plugin.
-CadConformity measure_through_plugin(const std::string& path, const CadOptions& options, const TetMesh& mesh);
+// measure_against_cad(path, options, mesh, measure) through the plugin.
+CadConformity measure_through_plugin(const std::string& path, const CadOptions& options, const TetMesh& mesh,
+                                     const CadMeasureOptions& measure);
 
 // project_onto_cad(path, options, edge, face, p) through the plugin, as MeshOptions::project_to_boundary wants it;
 // empty when the plugin has no such entry point.

@@ -211,12 +211,13 @@ std::function<bool(int, int, Point3&)> cad_projector(const std::string& path, co
 #endif
 }
 
-CadConformity measure_cad_input(const std::string& path, const InputOptions& options, const TetMesh& mesh) {
+CadConformity measure_cad_input(const std::string& path, const InputOptions& options, const TetMesh& mesh,
+                                const CadMeasureOptions& measure) {
   require_regular_input_file(path);
 #if QUALMESH_WITH_CAD
-  return measure_through_plugin(path, cad_options_of(options), mesh);
+  return measure_through_plugin(path, cad_options_of(options), mesh, measure);
 #else
-  (void)options, (void)mesh;
+  (void)options, (void)mesh, (void)measure;
   throw InputError(ErrorCode::Unsupported, "this qualmesh was built without the CAD front end (OpenCASCADE)", path);
 #endif
 }

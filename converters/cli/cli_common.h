@@ -73,6 +73,7 @@ CadFitReport fit_to_cad_input(const std::string& path, const InputOptions& optio
 std::function<bool(int, int, Point3&)> cad_projector(const std::string& path, const InputOptions& options);
 
 // measure_against_cad (cad_import.h) for a mesh of the CAD input at `path`, through the plugin.
-CadConformity measure_cad_input(const std::string& path, const InputOptions& options, const TetMesh& mesh);
+CadConformity measure_cad_input(const std::string& path, const InputOptions& options, const TetMesh& mesh,
+                                const CadMeasureOptions& measure = {});
 
 }  // namespace qualmesh::cli

@@ -20,15 +20,23 @@
 //
 // Candidate (point, ball) pairs come from CGAL's box_intersection_d over the balls' bounding boxes and the points
 // (O(n log n + pairs)); each pair is then tested exactly by distance.
+//
+// A CAD model has no PLC whose local feature size could size the balls. Its zone (fill_cad_feature_protection) is
+// the mesh points within a radius of its sharp features, which the CAD front end finds on the CAD geometry
+// (cad_features.cpp); the radius is the caller's (the checker's --protection-radius, by default one median mesh
+// edge, which does not shrink where a mesher refines).
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "local_feature_size.h"
 #include "mesh_check_internal.h"
+#include "qualmesh/mesh_check.h"
 #include "qualmesh/plc_validate.h"
+#include "qualmesh/quality.h"
 
 namespace qualmesh::check {
 namespace {
@@ -128,3 +136,56 @@ ProtectionZones find_protection_zones(const Plc& plc, const std::vector<Point3>&
 }
 
 }  // namespace qualmesh::check
+
+namespace qualmesh {
+
+void fill_cad_feature_protection(CheckReport& report, const TetMesh& mesh,
+                                 const std::vector<Index>& near_feature_nodes, double angle_deg, double radius,
+                                 std::size_t num_sharp_vertices, std::size_t num_sharp_edges) {
+  report.protection_checked = true;
+  report.protection_zone = CheckReport::ProtectionZone::CadFeatureBalls;
+  report.protection_angle_deg = angle_deg;
+  report.protection_radius = radius;
+  report.num_sharp_vertices = num_sharp_vertices;
+  report.num_sharp_segments = num_sharp_edges;
+  report.num_tets_in_protection_zone = report.num_tets_outside_protection_below_10 =
+      report.num_tets_outside_protection_below_15 = 0;
+  const std::size_t n = mesh.points.size();
+  std::vector<char> near(n, 0);
+  for (Index v : near_feature_nodes)
+    if (v < n) near[v] = 1;
+  double min_outside = std::numeric_limits<double>::infinity();
+  for (const auto& v : mesh.tets) {
+    if (!(v[0] < n && v[1] < n && v[2] < n && v[3] < n)) continue;
+    if (near[v[0]] || near[v[1]] || near[v[2]] || near[v[3]]) {
+      ++report.num_tets_in_protection_zone;
+      continue;
+    }
+    const double q =
+        tet_quality(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]).min_dihedral_deg;
+    min_outside = std::min(min_outside, q);
+    if (q < 10) ++report.num_tets_outside_protection_below_10;
+    if (q < 15) ++report.num_tets_outside_protection_below_15;
+  }
+  report.min_dihedral_outside_protection_deg = std::isfinite(min_outside) ? min_outside : 0;
+}
+
+double median_edge_length(const TetMesh& mesh) {
+  const std::size_t n = mesh.points.size();
+  std::vector<double> lengths;
+  lengths.reserve(6 * mesh.tets.size());
+  for (const auto& t : mesh.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        if (!(t[a] < n && t[b] < n)) continue;
+        const Point3 &p = mesh.points[t[a]], &q = mesh.points[t[b]];
+        lengths.push_back(std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                    (p[2] - q[2]) * (p[2] - q[2])));
+      }
+  if (lengths.empty()) return 0;
+  auto mid = lengths.begin() + std::ptrdiff_t(lengths.size() / 2);
+  std::nth_element(lengths.begin(), mid, lengths.end());
+  return *mid;
+}
+
+}  // namespace qualmesh

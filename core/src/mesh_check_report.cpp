@@ -128,6 +128,10 @@ std::string to_json(const CheckReport& r) {
   o.count("num_tets_min_dihedral_below_15", r.num_tets_min_dihedral_below_15);
   o.boolean("protection_checked", r.protection_checked);
   if (r.protection_checked) {
+    o.raw("protection_zone", r.protection_zone == CheckReport::ProtectionZone::Balls ? "\"protecting_balls\""
+                                                                                       : "\"cad_feature_balls\"");
+    if (r.protection_zone == CheckReport::ProtectionZone::CadFeatureBalls)
+      o.number("protection_radius", r.protection_radius);
     o.number("protection_angle_deg", r.protection_angle_deg);
     o.count("num_sharp_vertices", r.num_sharp_vertices);
     o.count("num_sharp_segments", r.num_sharp_segments);
@@ -183,7 +187,14 @@ std::string to_text(const CheckReport& r) {
       << " deg, max radius-edge " << short_number(r.max_radius_edge) << ", min sigma " << short_number(r.min_sigma)
       << "; tets with min dihedral < 5/10/15 deg: " << r.num_tets_min_dihedral_below_5 << "/"
       << r.num_tets_min_dihedral_below_10 << "/" << r.num_tets_min_dihedral_below_15 << "\n";
-  if (r.protection_checked) {
+  if (r.protection_checked && r.protection_zone == CheckReport::ProtectionZone::CadFeatureBalls) {
+    out << "outside " << short_number(r.protection_radius) << " of sharp CAD features (angles < "
+        << short_number(r.protection_angle_deg) << " deg: " << r.num_sharp_vertices << " sharp vertices, "
+        << r.num_sharp_segments << " sharp edges; " << r.num_tets_in_protection_zone << " of " << r.num_tets
+        << " tets inside): min dihedral " << short_number(r.min_dihedral_outside_protection_deg)
+        << " deg, tets with min dihedral < 10/15 deg: " << r.num_tets_outside_protection_below_10 << "/"
+        << r.num_tets_outside_protection_below_15 << "\n";
+  } else if (r.protection_checked) {
     out << "outside the protection zones of input angles < " << short_number(r.protection_angle_deg) << " deg ("
         << r.num_sharp_vertices << " sharp vertices, " << r.num_sharp_segments << " sharp segments; "
         << r.num_tets_in_protection_zone << " of " << r.num_tets << " tets inside): min dihedral "

@@ -196,6 +196,34 @@ CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options,
 // the last model asked about. Throws InputError as read_cad does when the model must be read.
 bool project_onto_cad(const std::string& path, const CadOptions& options, int edge, int face, Point3& p);
 
+// Sharp features of a CAD model (issue 15's goal: no tet below 10 degrees anywhere the CAD dihedral angles are
+// 30 degrees or more), found on the CAD geometry itself, so that any mesher's mesh of the model is judged alike:
+//  - a sharp edge: a CAD edge shared by two faces whose interior dihedral angle (measured in the solid, 360 minus
+//    it at a reflex edge) is below the threshold at one of 9 points along it;
+//  - a sharp vertex: a CAD vertex where two edges of one face leave at an angle below the threshold (a corner of the
+//    face that tapers to a point, as where two nearly tangent faces meet a plane).
+struct SharpCadFeatures {
+  std::size_t num_sharp_edges = 0;
+  std::size_t num_sharp_vertices = 0;
+  std::vector<char> near_feature;  // per point given: it lies within the radius of a sharp edge or vertex (at least
+                                   // within the entity's tolerance and 1e-7 of the model's diagonal: on it)
+};
+// The sharp features of the model at `path` (read and healed with `options`) below `angle_deg`, and which of
+// `points` lie within `radius` of them. Throws InputError as read_cad does (and Unsupported for .scad).
+SharpCadFeatures find_sharp_cad_features(const std::string& path, const CadOptions& options,
+                                         const std::vector<Point3>& points, double angle_deg, double radius);
+
+// What measure_against_cad measures besides the volume.
+struct CadMeasureOptions {
+  // Every boundary node against the CAD face its boundary face's label names. Off for a mesh whose face numbers
+  // are not the model's (Gmsh's own numbering): its distances would be to the wrong faces.
+  bool distances = true;
+  // > 0: the sharp features below this angle (find_sharp_cad_features), with the mesh vertices within
+  // feature_radius (model units) of them.
+  double feature_angle_deg = 0;
+  double feature_radius = 0;
+};
+
 // How well a mesh of a CAD model fits it (what `qualmesh check MESH --ref MODEL.step` reports): every node of every
 // boundary face with label f is measured against CAD face Face<f> by distances_to_cad_faces, and the mesh volume
 // against OpenCASCADE's volume of the solids.
@@ -206,8 +234,15 @@ struct CadConformity {
   double max_relative_to_tolerance = 0;  // max over nodes of distance / that face's tolerance
   double cad_volume = 0;             // sum of CadSummary::solid_volumes
   std::vector<std::string> problems; // the first few nodes beyond their face's tolerance, with coordinates
+  // With CadMeasureOptions::feature_angle_deg > 0: the sharp features, and the mesh vertices within
+  // feature_radius of them (ascending).
+  bool features_checked = false;
+  std::size_t num_sharp_edges = 0;
+  std::size_t num_sharp_vertices = 0;
+  std::vector<Index> feature_nodes;
 };
 // Mutates nothing; reads the model again. Throws InputError as read_cad does (and Unsupported for .scad).
-CadConformity measure_against_cad(const std::string& path, const CadOptions& options, const TetMesh& mesh);
+CadConformity measure_against_cad(const std::string& path, const CadOptions& options, const TetMesh& mesh,
+                                  const CadMeasureOptions& measure = {});
 
 }  // namespace qualmesh

@@ -125,11 +125,15 @@ struct CheckReport {
   // protecting balls of radius f (the local feature size at the centre) at every apex of a sharp segment-segment or
   // segment-facet angle, and along every segment with a sharp facet-facet angle (a capsule of radius
   // min(f(a), f(b), f(midpoint))). A tetrahedron is in the zone when one of its vertices lies in a ball.
-  // Set only with a reference and protection_angle_deg > 0 (protection_checked).
+  // Set only with a reference and protection_angle_deg > 0 (protection_checked). For a CAD reference the zone is
+  // drawn around the CAD model's sharp features instead (fill_cad_feature_protection, protection_zone).
   bool protection_checked = false;
+  enum class ProtectionZone { Balls, CadFeatureBalls };
+  ProtectionZone protection_zone = ProtectionZone::Balls;
+  double protection_radius = 0;                // CadFeatureBalls: the zone's radius around every sharp feature
   double protection_angle_deg = 0;
-  std::size_t num_sharp_vertices = 0;          // apices of sharp segment-segment or segment-facet angles
-  std::size_t num_sharp_segments = 0;          // segments with a sharp facet-facet angle
+  std::size_t num_sharp_vertices = 0;          // apices of sharp segment-segment or segment-facet angles (CAD: vertices)
+  std::size_t num_sharp_segments = 0;          // segments with a sharp facet-facet angle (CAD: edges)
   std::size_t num_tets_in_protection_zone = 0;
   double min_dihedral_outside_protection_deg = 0;  // 0 when every tetrahedron is in the zone
   std::size_t num_tets_outside_protection_below_10 = 0;
@@ -148,6 +152,20 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
 // checked or set), as check_mesh computes them against `reference` with protection_angle_deg = angle_deg: for a
 // mesher's summary, at a fraction of check_mesh's cost.
 CheckReport check_protection_zones(const TetMesh& mesh, const Plc& reference, double angle_deg = 60);
+
+// The protection-zone figures of a mesh of a CAD model (issue 15's goal: no tet below 10 degrees anywhere the CAD
+// dihedral angles are 30 degrees or more), into report's protection fields (protection_zone CadFeatureBalls).
+// `near_feature_nodes` are the mesh vertices within `radius` of the model's sharp features below `angle_deg`, which
+// the CAD front end finds on the CAD geometry (measure_against_cad); `num_sharp_vertices` and `num_sharp_edges` say
+// how many it found. A tetrahedron with such a vertex is inside the zone. The CAD model has no local feature size
+// the checker could use for the radius, as it does for a PLC; the caller picks it (median_edge_length by default).
+void fill_cad_feature_protection(CheckReport& report, const TetMesh& mesh,
+                                 const std::vector<Index>& near_feature_nodes, double angle_deg, double radius,
+                                 std::size_t num_sharp_vertices, std::size_t num_sharp_edges);
+
+// The median length of the mesh's tetrahedron edges (each counted once per tetrahedron): one element, for a zone
+// radius that does not depend on where a mesher refines.
+double median_edge_length(const TetMesh& mesh);
 
 // Human-readable summary, several lines.
 std::string to_text(const CheckReport& report);
