@@ -1,6 +1,6 @@
 // `qualmesh check MESH [--ref INPUT] [--json] [--require-regular | --no-regularity] [--protection-angle DEG]
-// [--protection-radius R] [--no-cad-distance]`: re-checks a tetrahedral mesh from scratch (ours or a peer's: TetGen, Gmsh, Medit):
-// orientation, face matching, conformity to the input, the (weighted) Delaunay property (counted; a defect only with
+// [--protection-radius R] [--no-cad-distance]`: re-checks a tetrahedral mesh from scratch (ours or a peer's: TetGen,
+// Gmsh, Medit): orientation, face matching, conformity to the input, the (weighted) Delaunay property (counted; a defect only with
 // --require-regular), quality figures, over all tetrahedra and (with a reference) outside the protection zones of
 // its sharp input angles (a PLC's) or sharp features (a CAD model's). Exit 3 on defects.
 #include <cmath>

@@ -188,7 +188,7 @@ std::string to_text(const CheckReport& r) {
       << "; tets with min dihedral < 5/10/15 deg: " << r.num_tets_min_dihedral_below_5 << "/"
       << r.num_tets_min_dihedral_below_10 << "/" << r.num_tets_min_dihedral_below_15 << "\n";
   if (r.protection_checked && r.protection_zone == CheckReport::ProtectionZone::CadFeatureBalls) {
-    out << "outside " << short_number(r.protection_radius) << " of sharp CAD features (angles < "
+    out << "farther than " << short_number(r.protection_radius) << " from sharp CAD features (angles < "
         << short_number(r.protection_angle_deg) << " deg: " << r.num_sharp_vertices << " sharp vertices, "
         << r.num_sharp_segments << " sharp edges; " << r.num_tets_in_protection_zone << " of " << r.num_tets
         << " tets inside): min dihedral " << short_number(r.min_dihedral_outside_protection_deg)

@@ -132,8 +132,8 @@ struct CheckReport {
   ProtectionZone protection_zone = ProtectionZone::Balls;
   double protection_radius = 0;                // CadFeatureBalls: the zone's radius around every sharp feature
   double protection_angle_deg = 0;
-  std::size_t num_sharp_vertices = 0;          // apices of sharp segment-segment or segment-facet angles (CAD: vertices)
-  std::size_t num_sharp_segments = 0;          // segments with a sharp facet-facet angle (CAD: edges)
+  std::size_t num_sharp_vertices = 0;  // apices of sharp segment-segment or segment-facet angles (CAD: vertices)
+  std::size_t num_sharp_segments = 0;  // segments with a sharp facet-facet angle (CAD: edges)
   std::size_t num_tets_in_protection_zone = 0;
   double min_dihedral_outside_protection_deg = 0;  // 0 when every tetrahedron is in the zone
   std::size_t num_tets_outside_protection_below_10 = 0;
@@ -163,8 +163,10 @@ void fill_cad_feature_protection(CheckReport& report, const TetMesh& mesh,
                                  const std::vector<Index>& near_feature_nodes, double angle_deg, double radius,
                                  std::size_t num_sharp_vertices, std::size_t num_sharp_edges);
 
-// The median length of the mesh's tetrahedron edges (each counted once per tetrahedron): one element, for a zone
-// radius that does not depend on where a mesher refines.
+// The median length of the mesh's tetrahedron edges (each counted once per tetrahedron): one element of the whole
+// mesh, the default zone radius. A statistic of the whole mesh, it does not shrink near the features where a mesher
+// refines as a count of element layers would, though heavy refinement anywhere lowers it: to compare two meshers,
+// give both the same radius.
 double median_edge_length(const TetMesh& mesh);
 
 // Human-readable summary, several lines.
