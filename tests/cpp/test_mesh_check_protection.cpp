@@ -5,6 +5,9 @@
 //    segment, its two ends the sharp vertices, and the local feature size along it is the distance to the eaves, so
 //    the zone is the capsule of that radius around the ridge. QualMesh's mesh of the prism is counted against that
 //    capsule directly, and `qualmesh mesh`'s summary line shows the checker's figures.
+//  - A CAD model's zone (fill_cad_feature_protection: the tetrahedra with a vertex near a sharp feature, which the
+//    CAD front end finds) and its default radius (median_edge_length) on Kuhn's cube, counted by hand. The features
+//    themselves are tested end to end in tests/python/test_check_cad_features.py.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -173,6 +176,37 @@ TEST(MeshCheckProtection, MeshSummaryHasTheCheckersFigures) {
                 report.num_tets_in_protection_zone, report.num_tets, report.min_dihedral_outside_protection_deg,
                 report.num_tets_outside_protection_below_10, report.num_tets_outside_protection_below_15);
   EXPECT_NE(summary.find(line), std::string::npos) << "expected: " << line << "in:\n" << summary;
+}
+
+// Kuhn's cube: each of its 6 tetrahedra (0, a, b, 7) has three edges of length 1, two of sqrt(2) and one of sqrt(3),
+// dihedral angles 45, 60 and 90 degrees; vertex 1 = (1, 0, 0) is in 2 of them, vertex 0 in all 6.
+TEST(MeshCheckProtection, CadFeatureZoneHoldsTheTetsWithANearVertex) {
+  const TetMesh mesh = kuhn_unit_cube();
+  EXPECT_DOUBLE_EQ(median_edge_length(mesh), std::sqrt(2.0));  // 18 of 36 edge entries are 1, then sqrt(2)
+
+  CheckReport report;
+  report.num_tets = mesh.tets.size();  // as check_mesh sets it before the CAD checks add the zone
+  fill_cad_feature_protection(report, mesh, {1, 99}, 30, 0.25, 3, 2);  // 99: no such vertex, ignored
+  EXPECT_TRUE(report.protection_checked);
+  EXPECT_EQ(report.protection_zone, CheckReport::ProtectionZone::CadFeatureBalls);
+  EXPECT_EQ(report.protection_angle_deg, 30);
+  EXPECT_EQ(report.protection_radius, 0.25);
+  EXPECT_EQ(report.num_sharp_vertices, 3u);
+  EXPECT_EQ(report.num_sharp_segments, 2u);
+  EXPECT_EQ(report.num_tets_in_protection_zone, 2u);
+  EXPECT_NEAR(report.min_dihedral_outside_protection_deg, 45.0, 1e-9);
+  EXPECT_EQ(report.num_tets_outside_protection_below_10, 0u);
+  EXPECT_EQ(report.num_tets_outside_protection_below_15, 0u);
+  EXPECT_NE(to_text(report).find("farther than 0.25 from sharp CAD features (angles < 30 deg: 3 sharp vertices, 2 "
+                                 "sharp edges; 2 of 6 tets inside)"),
+            std::string::npos)
+      << to_text(report);
+  EXPECT_NE(to_json(report).find("\"protection_zone\": \"cad_feature_balls\""), std::string::npos);
+
+  CheckReport all;
+  fill_cad_feature_protection(all, mesh, {0}, 30, 0.25, 1, 0);
+  EXPECT_EQ(all.num_tets_in_protection_zone, 6u);
+  EXPECT_EQ(all.min_dihedral_outside_protection_deg, 0);  // none outside
 }
 
 }  // namespace
