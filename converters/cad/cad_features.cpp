@@ -41,6 +41,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "cad_private.h"
@@ -124,6 +125,70 @@ std::vector<std::pair<int, gp_Vec>> leaving_tangents(const TopoDS_Face& face,
 
 }  // namespace
 
+namespace cad {
+
+SharpFeatureList list_sharp_features(const TopoDS_Shape& solids, double angle_deg) {
+  SharpFeatureList list;
+  TopTools_IndexedMapOfShape edges, vertices, faces;
+  TopExp::MapShapes(solids, TopAbs_EDGE, edges);
+  TopExp::MapShapes(solids, TopAbs_VERTEX, vertices);
+  TopExp::MapShapes(solids, TopAbs_FACE, faces);
+
+  // Sharp edges: two faces meeting at a small interior dihedral angle.
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndUniqueAncestors(solids, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  for (int e = 1; e <= edge_faces.Extent(); ++e) {
+    const TopoDS_Edge& edge = TopoDS::Edge(edge_faces.FindKey(e));
+    const TopTools_ListOfShape& around = edge_faces.FindFromIndex(e);
+    if (BRep_Tool::Degenerated(edge) || around.Extent() != 2 || around.First().IsSame(around.Last())) continue;
+    const TopoDS_Face pair[2] = {TopoDS::Face(around.First()), TopoDS::Face(around.Last())};
+    const std::optional<TopoDS_Edge> first = occurrence_in(pair[0], edge), second = occurrence_in(pair[1], edge);
+    if (!first || !second) continue;
+    const TopoDS_Edge in_face[2] = {*first, *second};
+    const double angle = smallest_dihedral(edge, pair, in_face);
+    if (angle < angle_deg) list.edges.push_back({edges.FindIndex(edge), angle, gp_Pnt()});
+  }
+
+  // Sharp vertices: two edges of one face leaving a vertex at a small angle.
+  std::vector<double> corner(vertices.Extent() + 1, std::numeric_limits<double>::infinity());
+  for (int f = 1; f <= faces.Extent(); ++f) {
+    const std::vector<std::pair<int, gp_Vec>> tangents = leaving_tangents(TopoDS::Face(faces(f)), vertices);
+    for (std::size_t a = 0; a < tangents.size(); ++a)
+      for (std::size_t b = a + 1; b < tangents.size(); ++b)
+        if (tangents[a].first > 0 && tangents[a].first == tangents[b].first)
+          corner[tangents[a].first] = std::min(corner[tangents[a].first],
+                                               tangents[a].second.Angle(tangents[b].second) * kDegrees);
+  }
+  for (int v = 1; v <= vertices.Extent(); ++v)
+    if (corner[v] < angle_deg) list.vertices.push_back({v, corner[v], BRep_Tool::Pnt(TopoDS::Vertex(vertices(v)))});
+  return list;
+}
+
+std::string describe_sharp_features(const SharpFeatureList& list, double angle_deg) {
+  char line[300];
+  const auto smallest = [](const std::vector<SharpFeature>& features) {
+    return *std::min_element(features.begin(), features.end(),
+                             [](const SharpFeature& a, const SharpFeature& b) { return a.angle_deg < b.angle_deg; });
+  };
+  std::string corners = std::to_string(list.vertices.size()) + " face corners";
+  if (!list.vertices.empty()) {
+    const SharpFeature v = smallest(list.vertices);
+    std::snprintf(line, sizeof line, " (smallest %.2f deg at Vertex%d (%.6g, %.6g, %.6g))", v.angle_deg, v.number,
+                  v.at.X(), v.at.Y(), v.at.Z());
+    corners += line;
+  }
+  std::string edges = std::to_string(list.edges.size()) + " edges";
+  if (!list.edges.empty()) {
+    const SharpFeature e = smallest(list.edges);
+    std::snprintf(line, sizeof line, " (smallest dihedral angle %.2f deg, along Edge%d)", e.angle_deg, e.number);
+    edges += line;
+  }
+  std::snprintf(line, sizeof line, "sharp features below %g deg: ", angle_deg);
+  return line + corners + ", " + edges;
+}
+
+}  // namespace cad
+
 SharpCadFeatures find_sharp_cad_features(const std::string& path, const CadOptions& options,
                                          const std::vector<Point3>& points, double angle_deg, double radius) {
   if (cad::lower_extension(path) == ".scad")
@@ -133,26 +198,20 @@ SharpCadFeatures find_sharp_cad_features(const std::string& path, const CadOptio
   std::vector<std::string> log;
   const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/false);
   try {
+    const cad::SharpFeatureList list = cad::list_sharp_features(solids, angle_deg);
+    result.num_sharp_edges = list.edges.size();
+    result.num_sharp_vertices = list.vertices.size();
     Bnd_Box box;
     BRepBndLib::Add(solids, box);
     const double diagonal = box.IsVoid() ? 0 : std::sqrt(box.SquareExtent());
     const auto near = [&](const gp_Pnt& a, std::size_t i, double tolerance) {
       return gp_Pnt(points[i][0], points[i][1], points[i][2]).Distance(a) <= tolerance;
     };
-
-    // Sharp edges, and the points near them.
-    TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
-    TopExp::MapShapesAndUniqueAncestors(solids, TopAbs_EDGE, TopAbs_FACE, edge_faces);
-    for (int e = 1; e <= edge_faces.Extent(); ++e) {
-      const TopoDS_Edge& edge = TopoDS::Edge(edge_faces.FindKey(e));
-      const TopTools_ListOfShape& around = edge_faces.FindFromIndex(e);
-      if (BRep_Tool::Degenerated(edge) || around.Extent() != 2 || around.First().IsSame(around.Last())) continue;
-      const TopoDS_Face faces[2] = {TopoDS::Face(around.First()), TopoDS::Face(around.Last())};
-      const std::optional<TopoDS_Edge> first = occurrence_in(faces[0], edge), second = occurrence_in(faces[1], edge);
-      if (!first || !second) continue;
-      const TopoDS_Edge in_face[2] = {*first, *second};
-      if (!(smallest_dihedral(edge, faces, in_face) < angle_deg)) continue;
-      ++result.num_sharp_edges;
+    TopTools_IndexedMapOfShape edges, vertices;
+    TopExp::MapShapes(solids, TopAbs_EDGE, edges);
+    TopExp::MapShapes(solids, TopAbs_VERTEX, vertices);
+    for (const cad::SharpFeature& feature : list.edges) {
+      const TopoDS_Edge& edge = TopoDS::Edge(edges(feature.number));
       const double tolerance = std::max({radius, BRep_Tool::Tolerance(edge), 1e-7 * diagonal});
       Bnd_Box edge_box;
       BRepBndLib::Add(edge, edge_box);
@@ -169,28 +228,11 @@ SharpCadFeatures find_sharp_cad_features(const std::string& path, const CadOptio
         result.near_feature[i] = on;
       }
     }
-
-    // Sharp vertices: two edges of one face leaving a vertex at a small angle.
-    TopTools_IndexedMapOfShape vertices, faces;
-    TopExp::MapShapes(solids, TopAbs_VERTEX, vertices);
-    TopExp::MapShapes(solids, TopAbs_FACE, faces);
-    std::vector<char> sharp_vertex(vertices.Extent() + 1, 0);
-    for (int f = 1; f <= faces.Extent(); ++f) {
-      const std::vector<std::pair<int, gp_Vec>> tangents = leaving_tangents(TopoDS::Face(faces(f)), vertices);
-      for (std::size_t a = 0; a < tangents.size(); ++a)
-        for (std::size_t b = a + 1; b < tangents.size(); ++b)
-          if (tangents[a].first > 0 && tangents[a].first == tangents[b].first &&
-              tangents[a].second.Angle(tangents[b].second) * kDegrees < angle_deg)
-            sharp_vertex[tangents[a].first] = 1;
-    }
-    for (int v = 1; v <= vertices.Extent(); ++v) {
-      if (!sharp_vertex[v]) continue;
-      ++result.num_sharp_vertices;
-      const TopoDS_Vertex& vertex = TopoDS::Vertex(vertices(v));
+    for (const cad::SharpFeature& feature : list.vertices) {
+      const TopoDS_Vertex& vertex = TopoDS::Vertex(vertices(feature.number));
       const double tolerance = std::max({radius, BRep_Tool::Tolerance(vertex), 1e-7 * diagonal});
-      const gp_Pnt at = BRep_Tool::Pnt(vertex);
       for (std::size_t i = 0; i < points.size(); ++i)
-        if (!result.near_feature[i] && near(at, i, tolerance)) result.near_feature[i] = 1;
+        if (!result.near_feature[i] && near(feature.at, i, tolerance)) result.near_feature[i] = 1;
     }
   } catch (const Standard_Failure& failure) {
     throw InputError(ErrorCode::Parse,

@@ -2,6 +2,7 @@
 // stages read -> heal -> PLC (see cad_private.h), and checks a sized surface mesh (validate_plc) before it goes out.
 #include "qualmesh/cad_import.h"
 
+#include <Standard_Failure.hxx>
 #include <TopoDS_Shape.hxx>
 
 #include "cad_private.h"
@@ -93,6 +94,12 @@ CadModel read_cad(const std::string& path, const CadOptions& options) {
     }
   }
   model.summary.source_format = cad::cad_format(path);
+  try {
+    model.summary.sharp_features =
+        cad::describe_sharp_features(cad::list_sharp_features(solids, kCadSharpAngleDeg), kCadSharpAngleDeg);
+  } catch (const Standard_Failure&) {
+    model.summary.sharp_features = "sharp features: not measured (OpenCASCADE failed)";
+  }
   model.summary.healing_log.insert(model.summary.healing_log.begin(), log.begin(), log.end());
   return model;
 }

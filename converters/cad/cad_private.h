@@ -5,6 +5,7 @@
 #pragma once
 
 #include <TopoDS_Shape.hxx>
+#include <gp_Pnt.hxx>
 
 #include <array>
 #include <optional>
@@ -54,6 +55,23 @@ std::optional<Point3> region_seed(const std::vector<SeedTriangle>& triangles, do
 
 // Renders an OpenSCAD file with `openscad` and reads the result, repairing only exactly.
 CadModel read_scad_file(const std::string& path, const CadOptions& options);
+
+// One sharp feature of a CAD model (cad_features.cpp): an edge (Edge<number>, with its smallest interior dihedral
+// angle) or a vertex (Vertex<number>, with the smallest angle between two edges of one face leaving it, and its
+// point), numbered as TopExp::MapShapes numbers the healed shape's edges and vertices (FreeCAD's names).
+struct SharpFeature {
+  int number = 0;
+  double angle_deg = 0;
+  gp_Pnt at;  // vertices only
+};
+struct SharpFeatureList {
+  std::vector<SharpFeature> edges, vertices;
+};
+// The sharp edges and vertices of `solids` below `angle_deg` (cad_import.h, find_sharp_cad_features, says which).
+SharpFeatureList list_sharp_features(const TopoDS_Shape& solids, double angle_deg);
+// One line for the model's summary (part.step): "sharp features below 30 deg: 6 face corners (smallest 0.00 deg at
+// Vertex38 (85.725, 25.4, 42.8752)), 0 edges".
+std::string describe_sharp_features(const SharpFeatureList& list, double angle_deg);
 
 // Silences OpenCASCADE's default console printers (library code never prints). Idempotent.
 void silence_occt_messages();

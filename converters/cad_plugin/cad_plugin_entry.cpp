@@ -37,6 +37,7 @@ std::vector<std::string> summary_notes(const CadSummary& s) {
     std::snprintf(line, sizeof line, "curved faces tessellated with chordal deflection %.4g", s.deflection_used);
     notes.push_back(line);
   }
+  if (!s.sharp_features.empty()) notes.push_back(s.sharp_features);
   for (const std::string& line : s.surface_log) notes.push_back("surface: " + line);
   for (const std::string& healed : s.healing_log) notes.push_back("healed: " + healed);
   return notes;

@@ -32,9 +32,9 @@ struct CheckArgs {
 };
 
 // The default sharpness thresholds: issue 16's protection zones of a PLC, issue 15's goal for CAD models (no tet
-// below 10 degrees anywhere the CAD dihedral angles are 30 degrees or more).
+// below 10 degrees anywhere the CAD dihedral angles are 30 degrees or more, cad_import.h).
 constexpr double kPlcProtectionAngle = 60;
-constexpr double kCadProtectionAngle = 30;
+constexpr double kCadProtectionAngle = kCadSharpAngleDeg;
 
 // A mesh of a CAD model has its boundary nodes on the CAD faces (fit_mesh_to_cad), not on the chords of the
 // tessellation that the PLC holds: it is judged against the CAD model itself (measure_against_cad), with the

@@ -9,6 +9,7 @@ The zone of the report is recomputed here from the mesh file alone (numpy): the 
 radius of the sharp edge (whose ends are the sharp vertices), and the quality outside it.
 """
 import json
+import re
 
 import pytest
 
@@ -143,6 +144,21 @@ def test_wedge_zone_is_a_radius_around_its_sharp_edge(run_qualmesh, tmp_path, me
     assert blunt["num_tets_in_protection_zone"] == 0
     assert blunt["min_dihedral_outside_protection_deg"] == pytest.approx(blunt["min_dihedral_deg"], abs=1e-9)
     assert blunt["num_tets_outside_protection_below_15"] == blunt["num_tets_min_dihedral_below_15"]
+
+
+def test_info_names_the_sharp_features(run_qualmesh, tmp_path):
+    """`qualmesh info` lists the sharp features below 30 deg with the smallest of each kind: on the wedge, the two
+    20-degree apex corners of its caps (the first at the origin) and its 20-degree apex edge; none on the L prism."""
+    wedge, ell = tmp_path / "wedge.step", tmp_path / "ell.step"
+    build_prism(wedge, wedge_polygon(), HEIGHT)
+    build_prism(ell, [(0, 0), (4, 0), (4, 1), (1, 1), (1, 3), (0, 3)], 2.0)
+    proc = run_qualmesh("info", wedge)
+    assert proc.returncode == 0, proc.stderr
+    assert re.search(r"sharp features below 30 deg: 2 face corners \(smallest 20\.00 deg at Vertex\d+ "
+                     r"\((0|-?[0-9.e-]+), (0|-?[0-9.e-]+), (0|5)\)\), 1 edges \(smallest dihedral angle 20\.00 deg, "
+                     r"along Edge\d+\)", proc.stdout), proc.stdout
+    proc = run_qualmesh("info", ell)
+    assert "sharp features below 30 deg: 0 face corners, 0 edges" in proc.stdout, proc.stdout
 
 
 def test_reflex_edge_is_never_sharp(run_qualmesh, tmp_path):
