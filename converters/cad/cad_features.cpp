@@ -146,7 +146,7 @@ SharpFeatureList list_sharp_features(const TopoDS_Shape& solids, double angle_de
     if (!first || !second) continue;
     const TopoDS_Edge in_face[2] = {*first, *second};
     const double angle = smallest_dihedral(edge, pair, in_face);
-    if (angle < angle_deg) list.edges.push_back({edges.FindIndex(edge), angle, gp_Pnt()});
+    if (angle < angle_deg) list.edges.push_back({edge, edges.FindIndex(edge), angle, gp_Pnt()});
   }
 
   // Sharp vertices: two edges of one face leaving a vertex at a small angle.
@@ -160,7 +160,8 @@ SharpFeatureList list_sharp_features(const TopoDS_Shape& solids, double angle_de
                                                tangents[a].second.Angle(tangents[b].second) * kDegrees);
   }
   for (int v = 1; v <= vertices.Extent(); ++v)
-    if (corner[v] < angle_deg) list.vertices.push_back({v, corner[v], BRep_Tool::Pnt(TopoDS::Vertex(vertices(v)))});
+    if (corner[v] < angle_deg)
+      list.vertices.push_back({vertices(v), v, corner[v], BRep_Tool::Pnt(TopoDS::Vertex(vertices(v)))});
   return list;
 }
 
@@ -196,7 +197,8 @@ SharpCadFeatures find_sharp_cad_features(const std::string& path, const CadOptio
   SharpCadFeatures result;
   result.near_feature.assign(points.size(), 0);
   std::vector<std::string> log;
-  const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/false);
+  // The shape read_cad read last, when it is this model (measure_against_cad reads it just before).
+  const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/true);
   try {
     const cad::SharpFeatureList list = cad::list_sharp_features(solids, angle_deg);
     result.num_sharp_edges = list.edges.size();
@@ -207,11 +209,8 @@ SharpCadFeatures find_sharp_cad_features(const std::string& path, const CadOptio
     const auto near = [&](const gp_Pnt& a, std::size_t i, double tolerance) {
       return gp_Pnt(points[i][0], points[i][1], points[i][2]).Distance(a) <= tolerance;
     };
-    TopTools_IndexedMapOfShape edges, vertices;
-    TopExp::MapShapes(solids, TopAbs_EDGE, edges);
-    TopExp::MapShapes(solids, TopAbs_VERTEX, vertices);
     for (const cad::SharpFeature& feature : list.edges) {
-      const TopoDS_Edge& edge = TopoDS::Edge(edges(feature.number));
+      const TopoDS_Edge& edge = TopoDS::Edge(feature.shape);
       const double tolerance = std::max({radius, BRep_Tool::Tolerance(edge), 1e-7 * diagonal});
       Bnd_Box edge_box;
       BRepBndLib::Add(edge, edge_box);
@@ -229,7 +228,7 @@ SharpCadFeatures find_sharp_cad_features(const std::string& path, const CadOptio
       }
     }
     for (const cad::SharpFeature& feature : list.vertices) {
-      const TopoDS_Vertex& vertex = TopoDS::Vertex(vertices(feature.number));
+      const TopoDS_Vertex& vertex = TopoDS::Vertex(feature.shape);
       const double tolerance = std::max({radius, BRep_Tool::Tolerance(vertex), 1e-7 * diagonal});
       for (std::size_t i = 0; i < points.size(); ++i)
         if (!result.near_feature[i] && near(feature.at, i, tolerance)) result.near_feature[i] = 1;

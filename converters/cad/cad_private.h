@@ -60,6 +60,7 @@ CadModel read_scad_file(const std::string& path, const CadOptions& options);
 // angle) or a vertex (Vertex<number>, with the smallest angle between two edges of one face leaving it, and its
 // point), numbered as TopExp::MapShapes numbers the healed shape's edges and vertices (FreeCAD's names).
 struct SharpFeature {
+  TopoDS_Shape shape;  // the TopoDS_Edge or TopoDS_Vertex
   int number = 0;
   double angle_deg = 0;
   gp_Pnt at;  // vertices only

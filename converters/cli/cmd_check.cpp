@@ -26,7 +26,7 @@ struct CheckArgs {
   double tolerance = 1e-9;
   bool require_regular = false;
   bool no_regularity = false;
-  double protection_angle = -1;  // not given: kPlcProtectionAngle or kCadProtectionAngle, by the reference
+  double protection_angle = -1;  // not given: kPlcProtectionAngle or kCadSharpAngleDeg, by the reference
   double protection_radius = -1;  // CAD reference; not given: median_edge_length of the mesh
   bool no_cad_distance = false;
 };
@@ -34,7 +34,6 @@ struct CheckArgs {
 // The default sharpness thresholds: issue 16's protection zones of a PLC, issue 15's goal for CAD models (no tet
 // below 10 degrees anywhere the CAD dihedral angles are 30 degrees or more, cad_import.h).
 constexpr double kPlcProtectionAngle = 60;
-constexpr double kCadProtectionAngle = kCadSharpAngleDeg;
 
 // A mesh of a CAD model has its boundary nodes on the CAD faces (fit_mesh_to_cad), not on the chords of the
 // tessellation that the PLC holds: it is judged against the CAD model itself (measure_against_cad), with the
@@ -42,7 +41,7 @@ constexpr double kCadProtectionAngle = kCadSharpAngleDeg;
 std::string judge_against_cad(const CheckArgs& args, const TetMesh& mesh, CheckReport& report, std::string& json) {
   CadMeasureOptions measure;
   measure.distances = !args.no_cad_distance;
-  measure.feature_angle_deg = args.protection_angle < 0 ? kCadProtectionAngle : args.protection_angle;
+  measure.feature_angle_deg = args.protection_angle < 0 ? kCadSharpAngleDeg : args.protection_angle;
   measure.feature_radius = args.protection_radius < 0 ? median_edge_length(mesh) : args.protection_radius;
   const CadConformity c = measure_cad_input(args.reference, args.input_options, mesh, measure);
   if (c.features_checked)

@@ -135,20 +135,7 @@ void fill_protection(CheckReport& report, const Plc& plc, const std::vector<Poin
   report.protection_angle_deg = angle_deg;
   report.num_sharp_vertices = zones.num_sharp_vertices;
   report.num_sharp_segments = zones.num_sharp_segments;
-  double min_outside = std::numeric_limits<double>::infinity();
-  for (std::size_t t = 0; t < tets.size(); ++t) {
-    if (!valid[t]) continue;
-    const auto& v = tets[t];
-    if (zones.point_inside[v[0]] || zones.point_inside[v[1]] || zones.point_inside[v[2]] ||
-        zones.point_inside[v[3]]) {
-      ++report.num_tets_in_protection_zone;
-      continue;
-    }
-    min_outside = std::min(min_outside, tet_min_dihedral[t]);
-    if (tet_min_dihedral[t] < 10) ++report.num_tets_outside_protection_below_10;
-    if (tet_min_dihedral[t] < 15) ++report.num_tets_outside_protection_below_15;
-  }
-  report.min_dihedral_outside_protection_deg = std::isfinite(min_outside) ? min_outside : 0;
+  check::count_protection_zone(report, tets, valid, tet_min_dihedral, zones.point_inside);
 }
 
 }  // namespace

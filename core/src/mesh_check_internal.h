@@ -10,6 +10,10 @@
 
 #include "qualmesh/plc.h"
 
+namespace qualmesh {
+struct CheckReport;
+}  // namespace qualmesh
+
 namespace qualmesh::check {
 
 using Point2 = std::array<double, 2>;
@@ -98,5 +102,12 @@ struct ProtectionZones {
   std::vector<char> point_inside;  // per point: inside some protecting ball
 };
 ProtectionZones find_protection_zones(const Plc& plc, const std::vector<Point3>& points, double angle_deg);
+
+// The zone counts of CheckReport (num_tets_in_protection_zone, and outside it the smallest dihedral angle and the
+// tetrahedra below 10 and 15 degrees), for any zone: a valid tetrahedron with a vertex flagged in `point_inside` is
+// inside. Shared by the PLC's protecting balls and the CAD model's feature zones.
+void count_protection_zone(CheckReport& report, const std::vector<std::array<Index, 4>>& tets,
+                           const std::vector<char>& valid, const std::vector<double>& tet_min_dihedral,
+                           const std::vector<char>& point_inside);
 
 }  // namespace qualmesh::check

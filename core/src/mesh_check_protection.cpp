@@ -135,6 +135,26 @@ ProtectionZones find_protection_zones(const Plc& plc, const std::vector<Point3>&
   return zones;
 }
 
+void count_protection_zone(CheckReport& report, const std::vector<std::array<Index, 4>>& tets,
+                           const std::vector<char>& valid, const std::vector<double>& tet_min_dihedral,
+                           const std::vector<char>& point_inside) {
+  report.num_tets_in_protection_zone = report.num_tets_outside_protection_below_10 =
+      report.num_tets_outside_protection_below_15 = 0;
+  double min_outside = std::numeric_limits<double>::infinity();
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    if (!valid[t]) continue;
+    const auto& v = tets[t];
+    if (point_inside[v[0]] || point_inside[v[1]] || point_inside[v[2]] || point_inside[v[3]]) {
+      ++report.num_tets_in_protection_zone;
+      continue;
+    }
+    min_outside = std::min(min_outside, tet_min_dihedral[t]);
+    if (tet_min_dihedral[t] < 10) ++report.num_tets_outside_protection_below_10;
+    if (tet_min_dihedral[t] < 15) ++report.num_tets_outside_protection_below_15;
+  }
+  report.min_dihedral_outside_protection_deg = std::isfinite(min_outside) ? min_outside : 0;
+}
+
 }  // namespace qualmesh::check
 
 namespace qualmesh {
@@ -148,26 +168,19 @@ void fill_cad_feature_protection(CheckReport& report, const TetMesh& mesh,
   report.protection_radius = radius;
   report.num_sharp_vertices = num_sharp_vertices;
   report.num_sharp_segments = num_sharp_edges;
-  report.num_tets_in_protection_zone = report.num_tets_outside_protection_below_10 =
-      report.num_tets_outside_protection_below_15 = 0;
   const std::size_t n = mesh.points.size();
-  std::vector<char> near(n, 0);
+  std::vector<char> near(n, 0), valid(mesh.tets.size(), 0);
   for (Index v : near_feature_nodes)
     if (v < n) near[v] = 1;
-  double min_outside = std::numeric_limits<double>::infinity();
-  for (const auto& v : mesh.tets) {
-    if (!(v[0] < n && v[1] < n && v[2] < n && v[3] < n)) continue;
-    if (near[v[0]] || near[v[1]] || near[v[2]] || near[v[3]]) {
-      ++report.num_tets_in_protection_zone;
-      continue;
-    }
-    const double q =
-        tet_quality(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]).min_dihedral_deg;
-    min_outside = std::min(min_outside, q);
-    if (q < 10) ++report.num_tets_outside_protection_below_10;
-    if (q < 15) ++report.num_tets_outside_protection_below_15;
+  std::vector<double> tet_min_dihedral(mesh.tets.size(), 0);
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto& v = mesh.tets[t];
+    valid[t] = v[0] < n && v[1] < n && v[2] < n && v[3] < n;
+    if (valid[t])
+      tet_min_dihedral[t] =
+          tet_quality(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]).min_dihedral_deg;
   }
-  report.min_dihedral_outside_protection_deg = std::isfinite(min_outside) ? min_outside : 0;
+  check::count_protection_zone(report, mesh.tets, valid, tet_min_dihedral, near);
 }
 
 double median_edge_length(const TetMesh& mesh) {
