@@ -171,7 +171,7 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
     // neighbours again and again (tet_touches_acute_angle).
     const std::uint64_t key = (std::uint64_t(a.id) << 32) | b.id;
     auto& cache = vertex_pair_cache[static_cast<int>(b.kind)];
-    if (auto it = cache.find(key); it != cache.end()) return it->second;
+    if (const std::uint8_t* cached = cache.find(key)) return *cached != 0;
     const bool acute = [&] {
       if (element_contains_vertex(b, a.id)) return false;
       for (Index s : vertex_segments[a.id])
@@ -180,7 +180,7 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
         if (elements_meet_acute({ElementKind::Facet, f}, b)) return true;
       return false;
     }();
-    cache.emplace(key, acute);
+    cache.insert(key, std::uint8_t(acute));
     return acute;
   }
   if (a.kind == b.kind && a.id == b.id) return false;
@@ -188,7 +188,7 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
   const std::uint64_t k = (std::uint64_t(a.id) << 33) | (std::uint64_t(b.id) << 2) |
                           (std::uint64_t(a.kind) << 1) | std::uint64_t(b.kind == ElementKind::Facet);
   const std::uint64_t cache_key = k ^ (std::uint64_t(a.kind == ElementKind::Facet) << 63);
-  if (auto it = acute_pair_cache.find(cache_key); it != acute_pair_cache.end()) return it->second;
+  if (const std::uint8_t* cached = acute_pair_cache.find(cache_key)) return *cached != 0;
   bool acute = false;
   auto seg_dir = [&](Index s, Index v) {
     const Segment& seg = segments[s];
@@ -230,7 +230,7 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
       }
     }
   }
-  acute_pair_cache.emplace(cache_key, acute);
+  acute_pair_cache.insert(cache_key, std::uint8_t(acute));
   return acute;
 }
 
@@ -298,9 +298,9 @@ InputComplex build_input_complex(const Plc& plc, bool scan_rays) {
   c.vertex_facets.resize(nv);
   c.segment_facets.resize(c.segments.size());
   c.acute_vertex.assign(nv, 0);
-  c.segment_index.reserve(c.segments.size() * 2);
+  c.segment_index.reserve(c.segments.size());
   for (Index s = 0; s < c.segments.size(); ++s) {
-    c.segment_index.emplace(InputComplex::key(c.segments[s].a, c.segments[s].b), s);
+    c.segment_index.insert(InputComplex::key(c.segments[s].a, c.segments[s].b), s);
     c.vertex_segments[c.segments[s].a].push_back(s);
     c.vertex_segments[c.segments[s].b].push_back(s);
   }

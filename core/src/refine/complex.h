@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "qualmesh/plc.h"
+#include "refine/flat_map.h"
 
 namespace qualmesh::detail {
 
@@ -34,7 +35,7 @@ struct SegmentInFacet {
 struct InputComplex {
   const Plc* plc = nullptr;
   std::vector<Segment> segments;                           // collect_segments(plc)
-  std::unordered_map<std::uint64_t, Index> segment_index;  // key(a, b) with a < b -> segment id
+  FlatMap<Index> segment_index;  // key(a, b) with a < b -> segment id
   std::vector<std::vector<Index>> vertex_segments;         // input vertex -> incident segments (sorted)
   std::vector<std::vector<Index>> vertex_facets;           // input vertex -> facets containing it (sorted)
   std::vector<std::vector<SegmentInFacet>> segment_facets; // segment -> facets containing it (sorted by facet)
@@ -48,8 +49,8 @@ struct InputComplex {
     return (std::uint64_t(a) << 32) | b;
   }
   Index find_segment(Index a, Index b) const {
-    auto it = segment_index.find(key(a, b));
-    return it == segment_index.end() ? kNoIndex : it->second;
+    const Index* s = segment_index.find(key(a, b));
+    return s ? *s : kNoIndex;
   }
   bool facet_has_segment(Index facet, Index segment) const;
   const SegmentInFacet* segment_in_facet(Index segment, Index facet) const;
@@ -88,9 +89,9 @@ struct InputComplex {
   std::vector<Point3> inward_directions(Index facet, Index segment) const;
   // Dihedral angle below 90 degrees between facets f and g along their common segment s, on some pair of sides.
   bool facets_acute_along(Index segment, Index f, Index g) const;
-  mutable std::unordered_map<std::uint64_t, bool> acute_pair_cache;
+  mutable FlatMap<std::uint8_t> acute_pair_cache;  // 1: acute
   // Pairs with an input vertex (elements_meet_acute), by the other element's kind: (vertex id << 32 | other id).
-  mutable std::array<std::unordered_map<std::uint64_t, bool>, 3> vertex_pair_cache;
+  mutable std::array<FlatMap<std::uint8_t>, 3> vertex_pair_cache;
 
   // Ray queries at a facet's own corners and edges in O(log n) instead of a scan of its n edges (issue 18 item 6:
   // an 8000-gon took 39 s; complex_rays.cpp). For polygons that do not cross, the parity that facet_covers_ray counts

@@ -36,6 +36,7 @@
 // more (MeshOptions::sliver_insertion_budget).
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -228,13 +229,17 @@ PointRefusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t mi
     }
   for (const Ch3& c : out.cells) {
     Index ids[4];
+    bool on_segment[4];  // an input vertex or one on a segment: only two of them can make a subsegment
     for (int k = 0; k < 4; ++k) {
       ids[k] = c->vertex(k)->info();
       if (ids[k] == kNoIndex || scratch.mark[ids[k]] != scratch.generation) return PointRefusal::Hidden;
+      const VertexKind kind = s.vertices[ids[k]].kind;
+      on_segment[k] = kind == VertexKind::Input || kind == VertexKind::Segment;
     }
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b)
-        if (subsegment_of(s, ids[a], ids[b]) != kNoIndex && !link_has_edge(out.boundary, ids[a], ids[b]))
+        if (on_segment[a] && on_segment[b] && subsegment_of(s, ids[a], ids[b]) != kNoIndex &&
+            !link_has_edge(out.boundary, ids[a], ids[b]))
           return PointRefusal::LostSubsegment;
   }
   // Weight caps of the vertices around p: those of the link and those across it.
@@ -363,7 +368,11 @@ PointRefusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std:
   CellMemo memo;
   scratch.read.assign(1, c);
   for (const KPoint3& p : candidate_points(c)) {
-    const PointRefusal r = evaluate(s, c, p, min_removed, trial, memo, scratch);
+    // Once a candidate is accepted, one that removes fewer cells cannot be better: evaluate() drops it as FewRemoved
+    // as soon as that is known. The choice is the same; only `furthest` could differ, and it is read when none is
+    // accepted, when the request is min_removed.
+    const std::size_t need = found ? std::max(min_removed, best.num_removed) : min_removed;
+    const PointRefusal r = evaluate(s, c, p, need, trial, memo, scratch);
     if (r != PointRefusal::None) {
       furthest = std::max(furthest, r);
       continue;
@@ -377,10 +386,15 @@ PointRefusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std:
     refused->min_removed = min_removed;
     refused->few_removed = found || furthest == PointRefusal::FewRemoved;
     refused->furthest = found ? PointRefusal::FewRemoved : furthest;
-    std::sort(scratch.read.begin(), scratch.read.end());
-    scratch.read.erase(std::unique(scratch.read.begin(), scratch.read.end()), scratch.read.end());
+    // Each cell once, in the order first read, found with the conflict flags that conflict_zone clears after every
+    // walk (the 29 candidates' zones overlap: sorting their cells to drop the repeats was 5% of pump carter's run).
     refused->footprint.clear();
-    for (const Ch3& r : scratch.read) refused->footprint.emplace_back(r, r->time_stamp());
+    for (const Ch3& r : scratch.read)
+      if (!r->tds_data().is_in_conflict()) {
+        r->tds_data().mark_in_conflict();
+        refused->footprint.emplace_back(r, r->time_stamp());
+      }
+    for (const auto& [r, stamp] : refused->footprint) r->tds_data().clear();
     return refused->furthest;
   }
   std::vector<Index> star;
@@ -438,6 +452,7 @@ void insert_at_slivers(MeshState& s) {
   std::size_t num_skipped = 0;
   Scratch scratch;
   for (int round = 0; round < kMaxRounds && !budget_spent; ++round) {
+    const auto round_start = std::chrono::steady_clock::now();
     std::size_t inserted = 0, in_balls = 0;
     refused = 0;
     std::array<std::size_t, std::size_t(PointRefusal::None)> why{};
@@ -478,7 +493,9 @@ void insert_at_slivers(MeshState& s) {
                " points inserted (" + std::to_string(in_balls) +
                " subsegments and subfacets kept with a point in their diametral ball), " + std::to_string(refused) +
                " without an acceptable point" +
-               (budget_spent ? " (vertex budget spent)" : "") + refusal_summary(why));
+               (budget_spent ? " (vertex budget spent)" : "") + refusal_summary(why) + "; " +
+               std::to_string(std::chrono::duration<double>(std::chrono::steady_clock::now() - round_start).count()) +
+               " s");
     if (inserted == 0 && round >= 2) break;  // the rounds asking for more than one removal may insert nothing
   }
   s.log_line("sliver insertion: " + std::to_string(walks.misses()) + " vertex walks, " +
