@@ -1,5 +1,5 @@
 // FlatMap (core/src/refine/flat_map.h), the open-addressing map behind the input complex's segment index and its
-// acute-angle caches: it answers as std::unordered_map with first-insert-wins does, through growth, for keys that
+// acute-angle caches and each facet's map to its 2D vertices: it answers as std::unordered_map with first-insert-wins does, through growth, for keys that
 // collide in their low or high bits, for key 0 and for the largest key.
 #include <gtest/gtest.h>
 
@@ -50,6 +50,19 @@ TEST(FlatMap, ReserveKeepsEntriesAndFirstInsertWins) {
   map.insert(42, 0);  // a duplicate key (the caller's find() would have stopped it): the first stays visible
   EXPECT_EQ(*map.find(42), 1);
   EXPECT_EQ(map.find(43), nullptr);
+}
+
+TEST(FlatMap, SetReplacesOrAdds) {
+  FlatMap<std::uint32_t> map;
+  map.set(5, 1);  // into an empty map
+  map.set(5, 2);  // replaced, not added
+  EXPECT_EQ(map.size(), 1u);
+  EXPECT_EQ(*map.find(5), 2u);
+  for (std::uint32_t k = 0; k < 1000; ++k) map.set(k << 20, k);  // through growth; 0 << 20 is key 0
+  for (std::uint32_t k = 0; k < 1000; ++k) map.set(k << 20, k + 1);
+  EXPECT_EQ(map.size(), 1001u);
+  for (std::uint32_t k = 0; k < 1000; ++k) ASSERT_EQ(*map.find(std::uint64_t(k) << 20), k + 1);
+  EXPECT_EQ(*map.find(5), 2u);
 }
 
 }  // namespace

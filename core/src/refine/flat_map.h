@@ -2,9 +2,10 @@
 // addressing and linear probing in flat arrays; nothing is ever erased.
 // The input complex's hot lookups use it: elements_meet_acute's answers by element pair, which pumping, sliver
 // insertion and the improvement pass ask for again and again, and find_segment, which subsegment_of asks for every
-// edge between two input vertices (on a CAD surface every node is one). As std::unordered_map their node lookups
-// were 8-10% of those runs (perf: pump carter at --size 44.13, bunny00.off). Not thread-safe, like the rest of the
-// refinement state.
+// edge between two input vertices (on a CAD surface every node is one); and each facet's map from the ids of its
+// input and segment vertices to their 2D vertices, which every subfacet test reads. As std::unordered_map their
+// node lookups were 8-10% of those runs (perf: pump carter at --size 44.13, bunny00.off). Not thread-safe, like the
+// rest of the refinement state.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +33,16 @@ class FlatMap {
     values_[i] = value;
     used_[i] = 1;
     ++size_;
+  }
+  // Stores `value` for `key`, replacing the value stored before.
+  void set(std::uint64_t key, const Value& value) {
+    if (!keys_.empty())
+      for (std::size_t i = slot(key); used_[i]; i = (i + 1) & mask_)
+        if (keys_[i] == key) {
+          values_[i] = value;
+          return;
+        }
+    insert(key, value);
   }
   // Room for `n` keys without growing.
   void reserve(std::size_t n) {

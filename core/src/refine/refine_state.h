@@ -25,6 +25,7 @@
 #include "qualmesh/quality.h"
 #include "local_feature_size.h"
 #include "refine/complex.h"
+#include "refine/flat_map.h"
 #include "refine/levels.h"
 #include "refine/refine_params.h"
 
@@ -55,10 +56,10 @@ struct VertexRecord {
 // keeps its own in VertexRecord::facet_handle (facet_vertex_handle() looks in the right place).
 struct FacetMesh {
   Cdt2 cdt;
-  std::unordered_map<Index, Vh2> handle_map;
+  FlatMap<Vh2> handle_map;
   Vh2 find(Index vertex) const {
-    auto it = handle_map.find(vertex);
-    return it == handle_map.end() ? Vh2() : it->second;
+    const Vh2* vh = handle_map.find(vertex);
+    return vh ? *vh : Vh2();
   }
 };
 

@@ -12,6 +12,7 @@
 // triangulation.
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <unordered_set>
 
@@ -137,13 +138,15 @@ void build_facet_meshes(MeshState& s) {
                          plc.name, 0, ElementIds{{vh->info(), v}, {}, {f}, {}});
       }
       vh->info() = v;
-      fm.handle_map[v] = vh;
+      fm.handle_map.set(v, vh);
       hint = vh->face();
     }
     for (Index seg : facet_segments[f]) {
       const Segment& sg = s.complex.segments[seg];
       try {
-        fm.cdt.insert_constraint(fm.handle_map.at(sg.a), fm.handle_map.at(sg.b));
+        const Vh2 a = fm.find(sg.a), b = fm.find(sg.b);
+        if (a == Vh2() || b == Vh2()) throw std::out_of_range("segment end not in its facet");
+        fm.cdt.insert_constraint(a, b);
       } catch (const std::exception&) {
         throw InputError(ErrorCode::Intersection,
                          "segment " + std::to_string(seg) + " crosses another element of facet " + std::to_string(f),
@@ -292,7 +295,7 @@ void insert_into_facet(MeshState& s, Index facet, Index w, std::vector<std::arra
   const Vh2 vh = fm.cdt.insert(at.point, at.type, at.face, at.index);
   vh->info() = w;
   if (s.vertices[w].kind == VertexKind::Facet) s.vertices[w].facet_handle = vh;
-  else fm.handle_map[w] = vh;
+  else fm.handle_map.set(w, vh);
   update_star(s, facet, fm.cdt, vh, new_faces);
 }
 
