@@ -53,7 +53,7 @@ class FlatMap {
  private:
   std::size_t slot(std::uint64_t key) const { return std::size_t((key * 0x9E3779B97F4A7C15ull) >> shift_); }
   void grow(std::size_t at_least) {
-    std::size_t capacity = 64;
+    std::size_t capacity = 8;  // small: every facet has a map, most of them with a few keys
     while (capacity < at_least) capacity *= 2;
     std::vector<std::uint64_t> keys = std::move(keys_);
     std::vector<Value> values = std::move(values_);
