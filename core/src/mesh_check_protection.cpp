@@ -178,7 +178,7 @@ void fill_cad_feature_protection(CheckReport& report, const TetMesh& mesh,
     valid[t] = v[0] < n && v[1] < n && v[2] < n && v[3] < n;
     if (valid[t])
       tet_min_dihedral[t] =
-          tet_quality(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]).min_dihedral_deg;
+          tet_min_dihedral_deg(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]);
   }
   check::count_protection_zone(report, mesh.tets, valid, tet_min_dihedral, near);
 }

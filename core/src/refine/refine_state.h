@@ -211,6 +211,9 @@ bool vertex_on_plane(const MeshState& s, Index v, Index group);
 Index next_on_segment(const MeshState& s, Index segment, Index v);
 // The segment of which (u, v) is a subsegment (consecutive vertices), or kNoIndex.
 Index subsegment_of(const MeshState& s, Index u, Index v);
+// Can a vertex of this kind end a subsegment (an input vertex or one on a segment)? subsegment_of is kNoIndex
+// unless both ends can; a caller that has the kinds at hand skips the call for other pairs.
+inline bool can_end_subsegment(VertexKind kind) { return kind == VertexKind::Input || kind == VertexKind::Segment; }
 // The parameter of vertex w along `segment`: 0 at its `a`, 1 at its `b`, VertexRecord::t for a vertex inside it.
 double segment_parameter(const MeshState& s, Index segment, Index w);
 // Rule 1 split point of subsegment (u, v) of `segment`: its midpoint, or Shewchuk's concentric-shell point when an

@@ -229,16 +229,15 @@ PointRefusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t mi
     }
   for (const Ch3& c : out.cells) {
     Index ids[4];
-    bool on_segment[4];  // an input vertex or one on a segment: only two of them can make a subsegment
+    bool ends[4];  // can_end_subsegment, read once per vertex instead of once per pair
     for (int k = 0; k < 4; ++k) {
       ids[k] = c->vertex(k)->info();
       if (ids[k] == kNoIndex || scratch.mark[ids[k]] != scratch.generation) return PointRefusal::Hidden;
-      const VertexKind kind = s.vertices[ids[k]].kind;
-      on_segment[k] = kind == VertexKind::Input || kind == VertexKind::Segment;
+      ends[k] = can_end_subsegment(s.vertices[ids[k]].kind);
     }
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b)
-        if (on_segment[a] && on_segment[b] && subsegment_of(s, ids[a], ids[b]) != kNoIndex &&
+        if (ends[a] && ends[b] && subsegment_of(s, ids[a], ids[b]) != kNoIndex &&
             !link_has_edge(out.boundary, ids[a], ids[b]))
           return PointRefusal::LostSubsegment;
   }

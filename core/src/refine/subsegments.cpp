@@ -80,6 +80,7 @@ Index prev_on_segment(const MeshState& s, Index segment, Index v) {
 Index subsegment_of(const MeshState& s, Index u, Index v) {
   const VertexRecord& ru = s.vertices[u];
   const VertexRecord& rv = s.vertices[v];
+  if (!can_end_subsegment(ru.kind) || !can_end_subsegment(rv.kind)) return kNoIndex;
   if (ru.kind == VertexKind::Segment || rv.kind == VertexKind::Segment) {
     const Index segment = ru.kind == VertexKind::Segment ? ru.host : rv.host;
     const Index w = ru.kind == VertexKind::Segment ? u : v;
