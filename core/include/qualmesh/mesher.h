@@ -83,11 +83,13 @@ struct MeshOptions {
     // volume mesh): an input vertex inside the diametral ball of an input edge or face of the same tessellation (an
     // obtuse input triangle) is left there while the element is present, and so is a segment vertex in the
     // diametral ball of a subsegment of a segment sharing an input vertex with its own (the acute corners of every
-    // input triangle). Conformity stays exact and Rule 3's bound holds as before; triangulated surfaces need far
-    // fewer vertices (no pumping: fandisk.off 7424 instead of 28003, anchor.off 5360 instead of 18411), but their
-    // quality is below the paper's rule's (fandisk.off: min dihedral 0.11 degrees and 25 tets below 10, against 15.0
-    // and none), which is why it is not the default there. Where it would leave an element missing, or (with no
-    // min_split_length) its conflict zones grow large, the input is meshed again with the paper's rule
+    // input triangle). On a surface or PLC (not with project_to_boundary), an angle between two edges (two segments,
+    // or a segment and a facet's corner edge) then counts as an acute input angle only below 30 degrees; dihedral
+    // angles and elevations keep 90. Conformity stays
+    // exact and Rule 3's bound holds as before; triangulated surfaces need far fewer vertices (no pumping: fandisk.off
+    // 7424 instead of 28003, anchor.off 5360 instead of 18411; with pumping fandisk.off has 8597 vertices, min
+    // dihedral 15.0 degrees, none below 10, as under the paper's rule). Where it would leave an element missing, or
+    // (with no min_split_length) its conflict zones grow large, the input is meshed again with the paper's rule
     // (MeshStats::encroaching_fell_back; bottle.brep's tessellation).
     Steiner,
   };

@@ -46,7 +46,7 @@ Point3 facet_normal(const Plc& plc, const Facet& facet) {
   return normalized(n);
 }
 
-constexpr double kAcuteDeg = 90.0 - 1e-6;
+constexpr double kAcuteDeg = kPaperAcuteDeg;
 
 // Plane groups: facets joined through shared segments to facets exactly coplanar with them (exact orientation
 // predicate on input vertices) share a group id. A flat cell of near-cocircular Steiner points may span two such
@@ -130,7 +130,7 @@ bool InputComplex::elements_meet_at_acute_vertex(const std::vector<Index>& a, co
   return false;
 }
 
-double InputComplex::segment_facet_angle_deg(Index v, Index segment, Index facet) const {
+double InputComplex::segment_facet_angle_deg(Index v, Index segment, Index facet, bool* corner) const {
   const Segment& seg = segments[segment];
   const Point3 d = sub(plc->vertices[seg.a == v ? seg.b : seg.a], plc->vertices[v]);
   const Point3& n = frames[facet].normal;
@@ -141,6 +141,7 @@ double InputComplex::segment_facet_angle_deg(Index v, Index segment, Index facet
   const auto [first, last] = corners_at(facet, v);
   const int known = first == last || scan_rays ? 0 : indexed_corner_covers(facet, v, proj);
   const bool inside = known != 0 ? known > 0 : first != last && facet_covers_ray(facet, plc->vertices[v], proj, v, kNoIndex);
+  if (corner) *corner = !inside;
   for (auto corner = first; corner != last; ++corner) {
     const auto& loop = plc->facets[facet].polygons[(*corner)[1]];
     const std::size_t k = (*corner)[2];
@@ -150,6 +151,12 @@ double InputComplex::segment_facet_angle_deg(Index v, Index segment, Index facet
     best = std::min(best, angle);
   }
   return best;
+}
+
+bool InputComplex::segment_facet_acute(Index v, Index segment, Index facet) const {
+  bool corner = false;
+  const double angle = segment_facet_angle_deg(v, segment, facet, &corner);
+  return angle < (corner ? corner_acute_deg : kAcuteDeg);
 }
 
 bool InputComplex::element_contains_vertex(ElementRef e, Index v) const {
@@ -198,13 +205,13 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
     const Segment& sa = segments[a.id];
     const Segment& sb = segments[b.id];
     for (Index v : {sa.a, sa.b})
-      if ((v == sb.a || v == sb.b) && angle_deg(seg_dir(a.id, v), seg_dir(b.id, v)) < kAcuteDeg) acute = true;
+      if ((v == sb.a || v == sb.b) && angle_deg(seg_dir(a.id, v), seg_dir(b.id, v)) < corner_acute_deg) acute = true;
   } else if (a.kind == ElementKind::Segment) {  // segment a, facet b
     if (!facet_has_segment(b.id, a.id)) {
       const Segment& sa = segments[a.id];
       const auto& fv = facet_vertices[b.id];
       for (Index v : {sa.a, sa.b})
-        if (std::binary_search(fv.begin(), fv.end(), v) && segment_facet_angle_deg(v, a.id, b.id) < kAcuteDeg)
+        if (std::binary_search(fv.begin(), fv.end(), v) && segment_facet_acute(v, a.id, b.id))
           acute = true;
     }
   } else {  // two facets
@@ -223,9 +230,9 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
         if (in_a && in_b) {
           if (facets_acute_along(s, a.id, b.id)) acute = true;  // shared segment: the dihedral angle
         } else if (in_a && !in_b) {
-          if (segment_facet_angle_deg(v, s, b.id) < kAcuteDeg) acute = true;
+          if (segment_facet_acute(v, s, b.id)) acute = true;
         } else if (in_b && !in_a) {
-          if (segment_facet_angle_deg(v, s, a.id) < kAcuteDeg) acute = true;
+          if (segment_facet_acute(v, s, a.id)) acute = true;
         }
       }
     }
@@ -288,10 +295,11 @@ bool InputComplex::facets_acute_along(Index segment, Index f, Index g) const {
   return false;
 }
 
-InputComplex build_input_complex(const Plc& plc, bool scan_rays) {
+InputComplex build_input_complex(const Plc& plc, bool scan_rays, double corner_acute_deg) {
   InputComplex c;
   c.plc = &plc;
   c.scan_rays = scan_rays;
+  c.corner_acute_deg = corner_acute_deg;
   c.segments = collect_segments(plc);
   const std::size_t nv = plc.vertices.size();
   c.vertex_segments.resize(nv);

@@ -15,6 +15,13 @@
 
 namespace qualmesh::detail {
 
+// The paper's acute input angle (Section 2: Lemmas 3.3 and 3.4 assume none below 90 degrees), less rounding.
+inline constexpr double kPaperAcuteDeg = 90.0 - 1e-6;
+// Under the relaxed encroachment rule, angles between edges (two segments, or a segment and a facet's corner edge)
+// count as acute only below this. Chosen by measurement (session 40): 20, 30 and 45 were tried, and 30 is the
+// smallest corner a surface mesher made for volume meshing promises (Gmsh's, CGAL's, the CAD front end's).
+inline constexpr double kSteinerCornerAcuteDeg = 30.0;
+
 // Orthonormal frame of a facet's plane: local coordinates (u, v) = ((p - origin).e1, (p - origin).e2). Axis-aligned
 // planes get exact axis vectors, so grid inputs keep exact local coordinates.
 struct PlaneFrame {
@@ -43,6 +50,7 @@ struct InputComplex {
   std::vector<std::vector<Index>> facet_vertices;          // per facet, sorted input vertex ids
   std::vector<std::uint8_t> acute_vertex;                  // input vertex is the apex of an acute input angle
   std::vector<Index> plane_group;  // per facet: smallest facet id of its exactly coplanar, segment-connected group
+  double corner_acute_deg = kPaperAcuteDeg;  // see elements_meet_acute
 
   static std::uint64_t key(Index a, Index b) {
     if (a > b) std::swap(a, b);
@@ -61,14 +69,17 @@ struct InputComplex {
   // output classification, small_angles.cpp). Elements: an input vertex, a segment or a facet. They meet at an
   // acute angle when neither contains the other (an element never meets itself) and they share an input vertex v
   // at which:
-  //   segment-segment: the angle between them is below 90 degrees;
-  //   segment-facet:   the segment makes an angle below 90 degrees with the facet's corner at v (its elevation
-  //                    over the plane when it projects into the corner, else its angle to the nearer corner edge);
+  //   segment-segment: the angle between them is below corner_acute_deg;
+  //   segment-facet:   the segment's elevation over the facet's plane is below 90 degrees when it projects into the
+  //                    facet's corner at v; otherwise its angle to the nearer corner edge is below corner_acute_deg;
   //   facet-facet:     they share a segment through v with a dihedral angle below 90 degrees, or (sharing no
   //                    segment through v) a corner edge of one at v meets the other at an acute segment-facet angle.
   // An input vertex u meets an element E that does not contain it at an acute angle when a segment or facet
   // incident to u does (two input vertices: when an element of each does), so that the short input edges that a
   // small angle forces between input vertices count too.
+  // corner_acute_deg, the bound on angles measured between edges (two segments, or a segment and a facet's corner
+  // edge), is the paper's 90 degrees, or kSteinerCornerAcuteDeg under the relaxed encroachment rule on a surface or
+  // PLC (RefineParams::corner_acute_deg). Dihedral angles and elevations keep 90 always.
   enum class ElementKind : std::uint8_t { Vertex, Segment, Facet };
   struct ElementRef {
     ElementKind kind;
@@ -77,7 +88,11 @@ struct InputComplex {
   bool elements_meet_acute(ElementRef a, ElementRef b) const;
   bool element_contains_vertex(ElementRef e, Index v) const;
   // Angle (degrees) between segment s and facet f at their common input vertex v (s not in f).
-  double segment_facet_angle_deg(Index v, Index segment, Index facet) const;
+  // *corner (may be null): whether that is the angle to a corner edge (the segment does not project into the
+  // corner) rather than the elevation.
+  double segment_facet_angle_deg(Index v, Index segment, Index facet, bool* corner = nullptr) const;
+  // Whether that angle is acute in the sense above (corner_acute_deg for a corner edge, 90 for an elevation).
+  bool segment_facet_acute(Index v, Index segment, Index facet) const;
   // Does facet f cover the points just beyond `origin` (on f's plane) in the in-plane direction `dir`? Even-odd
   // parity of the crossings of the ray origin + t dir (t > 0) with f's closed-polygon edges, skipping the edges
   // through `origin`: those incident to input vertex `skip` (origin = that vertex), or edge (skip, skip2) (origin =
@@ -118,6 +133,7 @@ struct InputComplex {
 
 // Builds the complex. Throws InputError for a facet whose vertices span no plane.
 // scan_rays: answer every ray query by the scan (tests compare it with the index; same results, O(n^2) per facet).
-InputComplex build_input_complex(const Plc& plc, bool scan_rays = false);
+// corner_acute_deg: InputComplex::corner_acute_deg.
+InputComplex build_input_complex(const Plc& plc, bool scan_rays = false, double corner_acute_deg = kPaperAcuteDeg);
 
 }  // namespace qualmesh::detail

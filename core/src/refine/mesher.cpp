@@ -148,7 +148,7 @@ std::optional<MeshResult> mesh_attempt(const Plc& plc, const MeshOptions& option
   MeshResult result;
   auto t = Clock::now();
   begin_stage(s, MeshStage::Initial);
-  s.complex = detail::build_input_complex(plc);
+  s.complex = detail::build_input_complex(plc, false, s.params.corner_acute_deg);
   detail::insert_input_vertices(s);
   detail::build_facet_meshes(s);
   std::size_t num_acute = 0;

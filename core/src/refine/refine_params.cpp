@@ -24,6 +24,9 @@ RefineParams RefineParams::from(const MeshOptions& options) {
   p.sliver_insertion_budget = std::max(0.0, options.sliver_insertion_budget);
   p.max_vertices = options.max_vertices;
   p.encroachment = EncroachmentPolicy(options.encroaching);
+  p.corner_acute_deg = options.encroaching == MeshOptions::Encroaching::Steiner && !options.project_to_boundary
+                           ? kSteinerCornerAcuteDeg
+                           : kPaperAcuteDeg;
   // The user's floor belongs to the relaxed rule: the paper's rule (its fallback included) stays the reference that
   // follows the paper's proofs (on U_Joint_2.stp, the paper's rule under the user's floor retried its refused
   // centres for over 20 minutes where it finished in 276 s without).

@@ -14,6 +14,7 @@
 
 #include "qualmesh/mesher.h"
 #include "qualmesh/types.h"
+#include "refine/complex.h"
 
 namespace qualmesh::detail {
 
@@ -75,6 +76,20 @@ struct RefineParams {
   std::size_t max_vertices = 50'000'000;
   // Rules 1-2's encroachment rule.
   EncroachmentPolicy encroachment;
+  // Below which angle between two edges (two segments, or a segment and a facet's corner edge) the input complex
+  // calls elements acute (InputComplex::corner_acute_deg): the paper's 90 degrees, but kSteinerCornerAcuteDeg (30)
+  // under the relaxed rule on a surface or PLC. There input vertices do not encroach, nor do segment vertices the
+  // subsegments of segments through a common input vertex, so such a corner no longer drives Rules 1-2 to split
+  // each other's elements; called acute, it only kept Rule 3 (its skip of the tetrahedra whose shortest edge it
+  // forces) from grading the mesh away from the surface: on bunny00.off, where every input vertex is the apex of a
+  // triangle corner below 90 degrees, 54603 tetrahedra stayed above rho0, radius-edge ratios up to 12.7, smallest
+  // dihedral angle 0.35 degrees (with 30: 15.0 degrees, 3.4 times faster). Dihedral angles and elevations keep 90:
+  // with them at 30 too, Rule 3's splits between facets at 45 degrees (t13_data.stl) and 30.1 degrees (cheese.off)
+  // did not finish in 400 s. CAD inputs whose boundary points are projected onto the CAD surface
+  // (MeshOptions::project_to_boundary) keep 90 for now: there it helped the pump carter (min dihedral 5.4 -> 15.0
+  // degrees at --size 44.13) but not the tapered face corners of t20_data.step (3.3 -> 0.63) and part.step, and at
+  // part.step --size 10 --order 2 two mid nodes could no longer reach their face (0.02 mm off it).
+  double corner_acute_deg = kPaperAcuteDeg;
   // MeshOptions::min_split_length, squared (0 = none): the user's floor, applied under the relaxed rule only. The
   // relaxed rule's conflict-zone budget (scheduler.cpp) applies where it is 0.
   double sq_min_split = 0;

@@ -8,8 +8,10 @@
 //     acute_angle), and the quality figures report such tetrahedra apart (tet_touches_acute_angle, the one
 //     definition behind MeshResult::tet_touches_acute_angle);
 //   - Rule 4 tests no element meeting the vertex's host element at an acute angle (rule4.cpp).
-// The angles themselves are InputComplex::elements_meet_acute's (complex.cpp). Protecting weighted balls at sharp
-// vertices and segments (Cheng, Dey and Ramos; issue 16) would belong here too.
+// The angles themselves are InputComplex::elements_meet_acute's (complex.cpp): below 90 degrees under the paper's
+// encroachment rule; under the relaxed rule on a surface or PLC a corner between two edges only below 30
+// (RefineParams::corner_acute_deg), while the shells' apices (acute_vertex) keep 90. Protecting weighted balls at
+// sharp vertices and segments (Cheng, Dey and Ramos; issue 16) would belong here too.
 #include <limits>
 
 #include "refine/refine_state.h"
