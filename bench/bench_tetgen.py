@@ -4,8 +4,8 @@ PLC, in the same run.
 
 Four tools per model, pumping on (QualMesh's default pipeline):
   - "qualmesh --encroaching all": the paper's Rules 1-2, every vertex encroaches (the reference that follows the
-    paper's proofs; today's default for surfaces and PLCs);
-  - "qualmesh --encroaching steiner": the relaxed rule, input vertices do not encroach (today's default for CAD);
+    paper's proofs);
+  - "qualmesh --encroaching steiner": the relaxed rule, input vertices do not encroach (the CLI's default);
   - "qualmesh --coplanar-tolerance 1e-6": the default rule on the same PLC with its facets merged where they are
     coplanar up to 1e-6 of the bounding-box diagonal. TetGen does that by itself (triangles within 0.1 deg of
     coplanar: pinion.off's 1299 facets become its 227), so its mesh is not exactly on the input either. This row's

@@ -77,18 +77,18 @@ struct MeshOptions {
   // Which vertices make Rules 1 and 2 split a subsegment or subfacet that is present in the triangulation
   // (missing ones are always split, and so are those a rejected Rule 2 or 3 centre encroaches).
   enum class Encroaching {
-    // Every vertex: the paper's Rules 1 and 2 as written (default).
+    // Every vertex: the paper's Rules 1 and 2 as written (this struct's default, the reference that follows the
+    // paper's proofs; `qualmesh mesh --encroaching all`).
     All,
-    // Steiner vertices only (beyond the paper; the CLI's default for CAD inputs, whose surface is made for the
-    // volume mesh): an input vertex inside the diametral ball of an input edge or face of the same tessellation (an
-    // obtuse input triangle) is left there while the element is present, and so is a segment vertex in the
-    // diametral ball of a subsegment of a segment sharing an input vertex with its own (the acute corners of every
-    // input triangle). On a surface or PLC (not with project_to_boundary), an angle between two edges (two segments,
-    // or a segment and a facet's corner edge) then counts as an acute input angle only below 30 degrees; dihedral
-    // angles and elevations keep 90. Conformity stays
-    // exact and Rule 3's bound holds as before; triangulated surfaces need far fewer vertices (no pumping: fandisk.off
-    // 7424 instead of 28003, anchor.off 5360 instead of 18411; with pumping fandisk.off has 8597 vertices, min
-    // dihedral 15.0 degrees, none below 10, as under the paper's rule). Where it would leave an element missing, or
+    // Steiner vertices only (beyond the paper; the CLI's default for every input since issue 16's decision): an input
+    // vertex inside the diametral ball of an input edge or face of the same tessellation (an obtuse input triangle) is
+    // left there while the element is present, and so is a segment vertex in the diametral ball of a subsegment of a
+    // segment sharing an input vertex with its own (the acute corners of every input triangle). On a surface or PLC
+    // (not with project_to_boundary), an angle between two edges (two segments, or a segment and a facet's corner edge)
+    // then counts as an acute input angle only below 30 degrees; dihedral angles and elevations keep 90. Conformity
+    // stays exact and Rule 3's bound holds as before; triangulated surfaces need far fewer vertices (no pumping:
+    // fandisk.off 7424 instead of 28003, anchor.off 5360 instead of 18411; with pumping fandisk.off has 8597 vertices,
+    // min dihedral 15.0 degrees, none below 10, as under the paper's rule). Where it would leave an element missing, or
     // (with no min_split_length) its conflict zones grow large, the input is meshed again with the paper's rule
     // (MeshStats::encroaching_fell_back; bottle.brep's tessellation).
     Steiner,
