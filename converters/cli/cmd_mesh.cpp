@@ -43,7 +43,6 @@ struct MeshArgs {
   bool no_improve = false;
   int order = 1;  // 1: 4-node tetrahedra, 2: 10-node (second_order.h)
   MeshLimits limits;  // --time-limit, --max-memory, --allow-partial (mesh_limits.h)
-  CLI::Option* encroaching = nullptr;  // given on the command line, or the input's default
   CLI::Option* sliver_budget = nullptr;  // likewise
 };
 
@@ -104,11 +103,10 @@ int run_mesh(MeshArgs& args) {
   const Plc plc = load_input(args.input, args.input_options, &notes, &size);
   args.options.target_edge_length = size;
   const bool cad = has_cad_faces(args.input);
-  // The relaxed rule is the default (issue 16's decision): input vertices do not encroach. A CAD input's surface is
-  // made for the volume mesher (at equal size about Gmsh's node count instead of 4-7x). On the 16 surfaces and PLCs
-  // of ../shared/data/plc it needs 0.17-1.0x the paper's rule's vertices and less time, and meets every TetGen
-  // quality target the paper's rule meets (session 40; README). `--encroaching all` keeps the paper's rule.
-  if (args.encroaching->count() == 0) args.options.encroaching = MeshOptions::Encroaching::Steiner;
+  // MeshOptions' default encroachment rule is the relaxed one (issue 16's decision; `--encroaching all` keeps the
+  // paper's): a CAD input's surface is made for the volume mesher (at equal size about Gmsh's node count instead of
+  // 4-7x), and on the 16 surfaces and PLCs of ../shared/data/plc it needs 0.17-1.0x the paper's rule's vertices and
+  // less time, and meets every TetGen quality target the paper's rule meets (README).
   // More points at the slivers pumping leaves: a CAD surface leaves many more (cad_import.h).
   if (cad && args.sliver_budget->count() == 0)
     args.options.sliver_insertion_budget = kCadSliverInsertionBudget;
@@ -263,8 +261,7 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
                       "omega0: Rule 4 tests, and pumping caps, weights at omega0^2 f(v)^2 (default 0.5)");
   command->add_option("--delta", args->options.delta,
                       "Pumping caps weights at delta^2 N(v)^2, N: nearest-vertex distance; below 0.5 (default 0.45)");
-  args->encroaching =
-      command
+  command
       ->add_option("--encroaching", args->options.encroaching,
                    "Which vertices inside the diametral ball of a present subsegment or subfacet make Rules 1-2 "
                    "split it: 'steiner' (default: input vertices do not, nor segment vertices near a common input "

@@ -77,7 +77,7 @@ struct Engine {
   explicit Engine(Plc input, const MeshOptions& options = {}) : plc(std::move(input)) {
     s.plc = &plc;
     s.set_options(options);
-    s.complex = d::build_input_complex(plc);
+    s.complex = d::build_input_complex(plc, false, s.params.corner_acute_deg);
     d::insert_input_vertices(s);
     d::build_facet_meshes(s);
   }
@@ -111,8 +111,14 @@ struct Engine {
 // Tetrahedron whose face ABC is obtuse at C: C lies inside the diametral ball of AB (input edge, segment 0-1).
 Plc obtuse_tetrahedron() { return tetrahedron({0, 0, 0}, {2, 0, 0}, {1, 0.2, 0}, {1, 0.1, 1}); }
 
+MeshOptions papers_rule() {
+  MeshOptions options;
+  options.encroaching = MeshOptions::Encroaching::All;
+  return options;
+}
+
 TEST(Levels, Rule1EncroachedUnderThePapersRuleOnly) {
-  Engine paper(obtuse_tetrahedron());
+  Engine paper(obtuse_tetrahedron(), papers_rule());
   const Index ab = paper.segment(0, 1);
   ASSERT_NE(ab, kNoIndex);
   Index enc = kNoIndex;
@@ -288,7 +294,8 @@ TEST(Levels, AfterInsertionHooksQueueWhatTheNewVertexEncroaches) {
 // once called only their own hook).
 TEST(Levels, BoundaryStageRecoversEverySubsegmentAndSubfacet) {
   for (const double cy : {0.2, 0.9, 0.05}) {
-    Engine e(tetrahedron({0, 0, 0}, {2, 0, 0}, {1, cy, 0}, {1, 0.1, 0.7}));
+    // The paper's rule: the obtuse corner's vertex encroaches the long edge, so Rule 1 splits it.
+    Engine e(tetrahedron({0, 0, 0}, {2, 0, 0}, {1, cy, 0}, {1, 0.1, 0.7}), papers_rule());
     e.boundary_and_regions();
     d::MeshState& s = e.s;
     EXPECT_GT(s.stats.num_rule1_insertions, 0u) << cy;
@@ -340,10 +347,17 @@ TEST(Levels, ParamsDerivedOnceFromTheOptions) {
   EXPECT_TRUE(by_omega);
   EXPECT_DOUBLE_EQ(p.weight_cap(std::numeric_limits<double>::infinity(), 1.0, &by_omega), 0.3 * 0.3);
   EXPECT_FALSE(by_omega);
-  EXPECT_TRUE(p.encroachment.paper());
-  options.encroaching = MeshOptions::Encroaching::Steiner;
-  EXPECT_FALSE(d::RefineParams::from(options).encroachment.paper());
-  EXPECT_TRUE(d::RefineParams::from(options).encroachment.walks_to_centres());
+  // The relaxed rule is the default (issue 16), with corners below 30 degrees acute on a surface or PLC; the
+  // paper's rule keeps 90, and so does a CAD input with boundary projection.
+  EXPECT_FALSE(p.encroachment.paper());
+  EXPECT_TRUE(p.encroachment.walks_to_centres());
+  EXPECT_DOUBLE_EQ(p.corner_acute_deg, d::kSteinerCornerAcuteDeg);
+  options.project_to_boundary = [](int, int, Point3&) { return false; };
+  EXPECT_DOUBLE_EQ(d::RefineParams::from(options).corner_acute_deg, d::kPaperAcuteDeg);
+  options.project_to_boundary = nullptr;
+  options.encroaching = MeshOptions::Encroaching::All;
+  EXPECT_TRUE(d::RefineParams::from(options).encroachment.paper());
+  EXPECT_DOUBLE_EQ(d::RefineParams::from(options).corner_acute_deg, d::kPaperAcuteDeg);
 }
 
 // The split floor of Rules 1-2 (refine_params.h): the user's MeshOptions::min_split_length (relaxed rule only),

@@ -77,10 +77,10 @@ struct MeshOptions {
   // Which vertices make Rules 1 and 2 split a subsegment or subfacet that is present in the triangulation
   // (missing ones are always split, and so are those a rejected Rule 2 or 3 centre encroaches).
   enum class Encroaching {
-    // Every vertex: the paper's Rules 1 and 2 as written (this struct's default, the reference that follows the
-    // paper's proofs; `qualmesh mesh --encroaching all`).
+    // Every vertex: the paper's Rules 1 and 2 as written (the reference that follows the paper's proofs; `qualmesh
+    // mesh --encroaching all`).
     All,
-    // Steiner vertices only (beyond the paper; the CLI's default for every input since issue 16's decision): an input
+    // Steiner vertices only (beyond the paper; the default since issue 16's decision, in the CLI too): an input
     // vertex inside the diametral ball of an input edge or face of the same tessellation (an obtuse input triangle) is
     // left there while the element is present, and so is a segment vertex in the diametral ball of a subsegment of a
     // segment sharing an input vertex with its own (the acute corners of every input triangle). On a surface or PLC
@@ -93,7 +93,7 @@ struct MeshOptions {
     // (MeshStats::encroaching_fell_back; bottle.brep's tessellation).
     Steiner,
   };
-  Encroaching encroaching = Encroaching::All;
+  Encroaching encroaching = Encroaching::Steiner;
 
   // Sliver removal (paper Section 3.7: Rule 4 and step 3, pumping; Theorem 7.3).
   // pump = false gives plain Delaunay refinement (Rules 1-3 only, all weights zero), for comparison.
