@@ -105,8 +105,9 @@ int run_mesh(MeshArgs& args) {
   const bool cad = has_cad_faces(args.input);
   // MeshOptions' default encroachment rule is the relaxed one (issue 16's decision; `--encroaching all` keeps the
   // paper's): a CAD input's surface is made for the volume mesher (at equal size about Gmsh's node count instead of
-  // 4-7x), and on the 16 surfaces and PLCs of ../shared/data/plc it needs 0.17-1.0x the paper's rule's vertices and
-  // less time, and meets every TetGen quality target the paper's rule meets (README).
+  // 4-7x), and on the 16 surfaces and PLCs of ../shared/data/plc it needs 0.17-1.0x the paper's rule's vertices,
+  // mostly less time, and meets every TetGen quality target (minimum dihedral, tets below 10 degrees) the paper's rule
+  // meets (README).
   // More points at the slivers pumping leaves: a CAD surface leaves many more (cad_import.h).
   if (cad && args.sliver_budget->count() == 0)
     args.options.sliver_insertion_budget = kCadSliverInsertionBudget;
