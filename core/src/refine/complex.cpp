@@ -46,8 +46,6 @@ Point3 facet_normal(const Plc& plc, const Facet& facet) {
   return normalized(n);
 }
 
-constexpr double kAcuteDeg = kPaperAcuteDeg;
-
 // Plane groups: facets joined through shared segments to facets exactly coplanar with them (exact orientation
 // predicate on input vertices) share a group id. A flat cell of near-cocircular Steiner points may span two such
 // facets (a CAD quad split into two triangles), so the engine asks about the plane, not one facet.
@@ -156,7 +154,7 @@ double InputComplex::segment_facet_angle_deg(Index v, Index segment, Index facet
 bool InputComplex::segment_facet_acute(Index v, Index segment, Index facet) const {
   bool corner = false;
   const double angle = segment_facet_angle_deg(v, segment, facet, &corner);
-  return angle < (corner ? corner_acute_deg : kAcuteDeg);
+  return angle < (corner ? corner_acute_deg : kPaperAcuteDeg);
 }
 
 bool InputComplex::element_contains_vertex(ElementRef e, Index v) const {
@@ -291,7 +289,7 @@ std::vector<Point3> InputComplex::scan_inward_directions(Index facet, Index segm
 bool InputComplex::facets_acute_along(Index segment, Index f, Index g) const {
   for (const Point3& df : inward_directions(f, segment))
     for (const Point3& dg : inward_directions(g, segment))
-      if (angle_deg(df, dg) < kAcuteDeg) return true;
+      if (angle_deg(df, dg) < kPaperAcuteDeg) return true;
   return false;
 }
 
@@ -388,13 +386,13 @@ InputComplex build_input_complex(const Plc& plc, bool scan_rays, double corner_a
     bool acute = false;
     for (std::size_t i = 0; i < segs.size() && !acute; ++i)
       for (std::size_t j = i + 1; j < segs.size() && !acute; ++j)
-        if (angle_deg(direction(segs[i]), direction(segs[j])) < kAcuteDeg) acute = true;
+        if (angle_deg(direction(segs[i]), direction(segs[j])) < kPaperAcuteDeg) acute = true;
     for (std::size_t i = 0; i < segs.size() && !acute; ++i) {
       for (Index f : c.vertex_facets[v]) {
         if (acute || c.facet_has_segment(f, segs[i])) continue;
         // Angle between the segment and the facet at v: its elevation over the plane when it projects into the
         // facet's corner at v (convex or not), else the angle to the nearer corner edge.
-        if (c.segment_facet_angle_deg(v, segs[i], f) < kAcuteDeg) acute = true;
+        if (c.segment_facet_angle_deg(v, segs[i], f) < kPaperAcuteDeg) acute = true;
       }
     }
     c.acute_vertex[v] = acute;

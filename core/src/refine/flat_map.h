@@ -19,11 +19,8 @@ class FlatMap {
  public:
   // The value stored for `key`, or nullptr.
   const Value* find(std::uint64_t key) const {
-    if (keys_.empty()) return nullptr;
-    for (std::size_t i = slot(key);; i = (i + 1) & mask_) {
-      if (!used_[i]) return nullptr;
-      if (keys_[i] == key) return &values_[i];
-    }
+    const std::size_t i = position(key);
+    return i == kAbsent ? nullptr : &values_[i];
   }
   // Stores `value` for a key that find() does not hold.
   void insert(std::uint64_t key, const Value& value) {
@@ -37,13 +34,9 @@ class FlatMap {
   }
   // Stores `value` for `key`, replacing the value stored before.
   void set(std::uint64_t key, const Value& value) {
-    if (!keys_.empty())
-      for (std::size_t i = slot(key); used_[i]; i = (i + 1) & mask_)
-        if (keys_[i] == key) {
-          values_[i] = value;
-          return;
-        }
-    insert(key, value);
+    const std::size_t i = position(key);
+    if (i == kAbsent) insert(key, value);
+    else values_[i] = value;
   }
   // Room for `n` keys without growing.
   void reserve(std::size_t n) {
@@ -52,6 +45,15 @@ class FlatMap {
   std::size_t size() const { return size_; }
 
  private:
+  static constexpr std::size_t kAbsent = ~std::size_t(0);
+  // The slot holding `key`, or kAbsent.
+  std::size_t position(std::uint64_t key) const {
+    if (keys_.empty()) return kAbsent;
+    for (std::size_t i = slot(key);; i = (i + 1) & mask_) {
+      if (!used_[i]) return kAbsent;
+      if (keys_[i] == key) return i;
+    }
+  }
   std::size_t slot(std::uint64_t key) const { return std::size_t((key * 0x9E3779B97F4A7C15ull) >> shift_); }
   void grow(std::size_t at_least) {
     std::size_t capacity = 8;  // small: every facet has a map, most of them with a few keys

@@ -12,7 +12,7 @@
 // triangulation.
 #include <algorithm>
 #include <cstdio>
-#include <stdexcept>
+#include <exception>
 #include <string>
 #include <unordered_set>
 
@@ -143,11 +143,16 @@ void build_facet_meshes(MeshState& s) {
     }
     for (Index seg : facet_segments[f]) {
       const Segment& sg = s.complex.segments[seg];
-      try {
-        const Vh2 a = fm.find(sg.a), b = fm.find(sg.b);
-        if (a == Vh2() || b == Vh2()) throw std::out_of_range("segment end not in its facet");
-        fm.cdt.insert_constraint(a, b);
-      } catch (const std::exception&) {
+      const Vh2 a = fm.find(sg.a), b = fm.find(sg.b);
+      bool inserted = a != Vh2() && b != Vh2();  // both ends were inserted above, unless the input is broken
+      if (inserted) {
+        try {
+          fm.cdt.insert_constraint(a, b);
+        } catch (const std::exception&) {
+          inserted = false;
+        }
+      }
+      if (!inserted) {
         throw InputError(ErrorCode::Intersection,
                          "segment " + std::to_string(seg) + " crosses another element of facet " + std::to_string(f),
                          plc.name, 0, ElementIds{{sg.a, sg.b}, {seg}, {f}, {}});
