@@ -11,6 +11,9 @@
 // most about that far, but a move is always checked against the elements around the node (move_nodes_checked,
 // second_order.h): relaxed part of the way, or not made, rather than inverting an element.
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepClass_FaceClassifier.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GeomAPI_ProjectPointOnCurve.hxx>
@@ -34,6 +37,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -103,6 +107,37 @@ class Projector {
     const gp_Pnt q = data->project(local).Transformed(data->to_global);
     target = {q.X(), q.Y(), q.Z()};
     return true;
+  }
+
+  // A point inside the trimmed CAD face f for `target`, a point of its surface: `target` itself where it lies in the
+  // face (BRepClass_FaceClassifier, to the face's tolerance), else its mirror image across the face's boundary
+  // (through the nearest boundary point, BRepExtrema), projected onto the surface, or one a quarter as far inside;
+  // the boundary point itself only when neither is inside. The chord between two points of a face's boundary can
+  // leave the face where that boundary bends into it, and so can its midpoint's projection onto the surface:
+  // part.step's planar Face20 at --size 10 had a mid node 0.0155 outside its B-spline edge, where FreeCAD's node
+  // search did not find it. A node on the boundary itself would be found on the edge and the neighbouring face too.
+  void into_trimmed_face(int f, Point3& target) {
+    if (f < 1 || f > faces_.Extent()) return;
+    const TopoDS_Face& face = TopoDS::Face(faces_(f));
+    const double tolerance = BRep_Tool::Tolerance(face);
+    const auto inside = [&](const Point3& x) {
+      return BRepClass_FaceClassifier(face, gp_Pnt(x[0], x[1], x[2]), tolerance).State() == TopAbs_IN;
+    };
+    const gp_Pnt p(target[0], target[1], target[2]);
+    if (BRepClass_FaceClassifier(face, p, tolerance).State() != TopAbs_OUT) return;
+    BRepExtrema_DistShapeShape nearest(face, BRepBuilderAPI_MakeVertex(p).Vertex());
+    if (!nearest.IsDone() || nearest.NbSolution() < 1) return;
+    const gp_Pnt q = nearest.PointOnShape1(1);
+    for (double beyond : {1.0, 0.25}) {
+      const Point3 mirror{q.X() + beyond * (q.X() - p.X()), q.Y() + beyond * (q.Y() - p.Y()),
+                          q.Z() + beyond * (q.Z() - p.Z())};
+      Point3 on{};
+      if (onto_face(f, mirror, on) && inside(on)) {
+        target = on;
+        return;
+      }
+    }
+    target = {q.X(), q.Y(), q.Z()};
   }
 
   bool onto_edge(int e, const Point3& p, Point3& target) {
@@ -277,10 +312,11 @@ double distance(const Point3& a, const Point3& b) {
 constexpr double kAlongEdge[] = {0.4, 0.6, 0.3, 0.7};
 
 // Targets for the nodes listed in on_edge / on_face (by node index): an edge wins over a face; a node on several
-// edges (a CAD vertex) or several faces and no edge stays.
+// edges (a CAD vertex) or several faces and no edge stays. A node on a face for which `trimmed(node)` holds gets
+// a point inside the trimmed face (Projector::into_trimmed_face).
 std::vector<NodeMove> targets(Projector& projector, const TetMesh& mesh, const std::vector<int>& on_edge,
                               const std::vector<int>& on_face, Index first_node, std::size_t& num_fixed,
-                              double* max_offset) {
+                              double* max_offset, const std::function<bool(Index)>& trimmed = {}) {
   BoundingBox box;
   for (const Point3& p : mesh.points) box.add(p);
   const double still = box.empty() ? 0 : 1e-12 * distance(box.min, box.max);
@@ -295,6 +331,7 @@ std::vector<NodeMove> targets(Projector& projector, const TetMesh& mesh, const s
     if (on_edge[v] > 0) found = projector.onto_edge(on_edge[v], mesh.points[v], target);
     else if (on_face[v] > 0) found = projector.onto_face(on_face[v], mesh.points[v], target);
     if (!found) continue;
+    if (on_edge[v] <= 0 && trimmed && trimmed(v)) projector.into_trimmed_face(on_face[v], target);
     if (distance(target, mesh.points[v]) <= still) continue;  // on it already (to rounding): stays exact
     if (max_offset) *max_offset = std::max(*max_offset, distance(target, mesh.points[v]));
     moves.push_back({v, target, {}});
@@ -303,12 +340,16 @@ std::vector<NodeMove> targets(Projector& projector, const TetMesh& mesh, const s
 }
 
 // Mid node `move.node` of the edge a-b, on CAD edge `edge` (> 0) or else face `face`: its move with the places
-// along the edge as alternatives, and a target FreeCAD's node search cannot see put after those it can.
-NodeMove along_edge(Projector& projector, NodeMove move, const Point3& a, const Point3& b, int edge, int face) {
+// along the edge as alternatives (in the trimmed face when `trimmed`), and a target FreeCAD's node search cannot see
+// put after those it can.
+NodeMove along_edge(Projector& projector, NodeMove move, const Point3& a, const Point3& b, int edge, int face,
+                    bool trimmed) {
   for (double t : kAlongEdge) {
     const Point3 p{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
     Point3 q{};
-    if (edge > 0 ? projector.onto_edge(edge, p, q) : projector.onto_face(face, p, q)) move.alternatives.push_back(q);
+    if (!(edge > 0 ? projector.onto_edge(edge, p, q) : projector.onto_face(face, p, q))) continue;
+    if (edge <= 0 && trimmed) projector.into_trimmed_face(face, q);
+    move.alternatives.push_back(q);
   }
   const auto findable = [&](const Point3& q) {
     return edge > 0 ? projector.edge_findable(edge, q) : projector.face_findable(face, q);
@@ -320,6 +361,21 @@ NodeMove along_edge(Projector& projector, NodeMove move, const Point3& a, const 
   move.target = all.front();
   move.alternatives.assign(all.begin() + 1, all.end());
   return move;
+}
+
+// Moves the boundary corner nodes from `first` on onto the CAD face or edge they lie on (fit_mesh_to_cad); counts
+// the nodes on several CAD edges into num_fixed, and reports the largest offset and the number of targets when asked.
+NodeMoveReport fit_corner_nodes(Projector& projector, TetMesh& mesh, Index first, const NodeMoveOptions& options,
+                                std::size_t& num_fixed, double* max_offset, std::size_t* num_targets) {
+  const std::vector<int> labels = face_labels(mesh);
+  std::vector<int> on_edge(mesh.points.size(), kNone), on_face(mesh.points.size(), kNone);
+  for (std::size_t e = 0; e < mesh.edges.size(); ++e)
+    for (Index v : mesh.edges[e]) note(on_edge, v, mesh.edge_marker[e]);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (Index v : mesh.faces[f]) note(on_face, v, labels[f]);
+  const std::vector<NodeMove> moves = targets(projector, mesh, on_edge, on_face, first, num_fixed, max_offset);
+  if (num_targets) *num_targets = moves.size();
+  return move_nodes_checked(mesh, moves, options);
 }
 
 }  // namespace
@@ -361,20 +417,10 @@ CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options,
   const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/true);
   try {
     Projector projector(solids);
-    const std::vector<int> labels = face_labels(mesh);
     // Corner nodes.
-    {
-      std::vector<int> on_edge(mesh.points.size(), kNone), on_face(mesh.points.size(), kNone);
-      for (std::size_t e = 0; e < mesh.edges.size(); ++e)
-        for (Index v : mesh.edges[e]) note(on_edge, v, mesh.edge_marker[e]);
-      for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-        for (Index v : mesh.faces[f]) note(on_face, v, labels[f]);
-      const std::vector<NodeMove> moves =
-          targets(projector, mesh, on_edge, on_face, 0, report.num_fixed_vertices, &report.max_offset_before);
-      report.num_corner_targets = moves.size();
-      report.corners = move_nodes_checked(mesh, moves, fit_options.moves);
-      report.num_flat_caps_removed = remove_flat_boundary_tets(mesh);
-    }
+    report.corners = fit_corner_nodes(projector, mesh, 0, fit_options.moves, report.num_fixed_vertices,
+                                      &report.max_offset_before, &report.num_corner_targets);
+    report.num_flat_caps_removed = remove_flat_boundary_tets(mesh);
     if (!fit_options.second_order) return report;
     // Mid nodes. A boundary cap (a tetrahedron with two boundary faces) has corners whose edges all lie on the
     // boundary: where the surface bends towards the cap no interior node can keep its Jacobian positive, and every
@@ -402,14 +448,24 @@ CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options,
       for (std::size_t t = 0; t < mesh.tets.size(); ++t)
         for (int k = 0; k < 6; ++k)
           ends[mesh.tet_mid[t][k] - first_mid] = {mesh.tets[t][kTetEdges[k][0]], mesh.tets[t][kTetEdges[k][1]]};
+      // A mid node of an edge across a face, between two nodes on CAD edges, gets a target inside the trimmed face
+      // (a thin part of the face, or one whose boundary bends into it); elsewhere the projection is inside already.
+      std::vector<std::uint8_t> on_cad_edge(first_mid, 0);
+      for (const auto& e : mesh.edges) on_cad_edge[e[0]] = on_cad_edge[e[1]] = 1;
+      const auto trimmed = [&](Index v) {
+        const auto& e = ends[v - first_mid];
+        return on_edge[v] <= 0 && on_cad_edge[e[0]] && on_cad_edge[e[1]];
+      };
       std::size_t unused = 0;
-      const std::vector<NodeMove> moves = targets(projector, mesh, on_edge, on_face, first_mid, unused, nullptr);
+      const std::vector<NodeMove> moves =
+          targets(projector, mesh, on_edge, on_face, first_mid, unused, nullptr, trimmed);
       report.num_mid_targets = moves.size();
       // The places along a node's edge are projected only when its target fails (OpenCASCADE's projection is most
       // of the curving's time); a target FreeCAD's node search cannot see gets them at once, and goes after them.
       const auto along = [&](const NodeMove& m) {
         const auto& e = ends[m.node - first_mid];
-        return along_edge(projector, m, mesh.points[e[0]], mesh.points[e[1]], on_edge[m.node], on_face[m.node]);
+        return along_edge(projector, m, mesh.points[e[0]], mesh.points[e[1]], on_edge[m.node], on_face[m.node],
+                          trimmed(m.node));
       };
       std::vector<NodeMove> placed;
       for (const NodeMove& m : moves) {
@@ -422,13 +478,21 @@ CadFitReport fit_mesh_to_cad(const std::string& path, const CadOptions& options,
       if (report.mids.num_full == report.mids.num_requested || last) break;
       const std::vector<std::size_t>& blocking = report.mids.blocking_elements;
       const auto blocked = [&](std::size_t t) { return std::binary_search(blocking.begin(), blocking.end(), t); };
-      // Caps across a CAD edge cannot be removed: their interior edge is split, so that its new vertex can move
-      // (first: the split keeps the indices of the tetrahedra that `blocking` names).
+      // Boundary triangles with a corner that the curve makes flat have their opposite edge split, and the new
+      // vertex goes onto its face; caps across a CAD edge cannot be removed: their interior edge is split, so that
+      // its new vertex can move (both first: the splits keep the indices of the tetrahedra `blocking` names).
+      const Index first_new = static_cast<Index>(linear.points.size());
+      const std::size_t flat = round == kMaxCapRounds ? 0 : split_flat_face_corners(linear, blocked);
+      if (flat > 0) {
+        std::size_t fixed = 0;
+        fit_corner_nodes(projector, linear, first_new, fit_options.moves, fixed, nullptr, nullptr);
+      }
       const std::size_t split = round == kMaxCapRounds ? 0 : split_cap_interior_edges(linear, blocked);
       const std::size_t removed = round == kMaxCapRounds ? 0 : remove_boundary_caps(linear, blocked);
+      report.num_flat_corners_split += flat;
       report.num_cap_edges_split += split;
       report.num_curving_caps_removed += removed;
-      if (removed == 0 && split == 0) {
+      if (removed == 0 && split == 0 && flat == 0) {
         if (fit_options.moves.last_resort_jacobian_ratio <= 0) break;
         last = true;
       }

@@ -24,7 +24,7 @@ inline constexpr const char* kPluginFileName = "libqualmesh_cad_plugin.so";
 // Name of the entry point (load_cad_fn) in the plugin.
 inline constexpr const char* kLoadCadSymbol = "qualmesh_cad_plugin_load_cad_v2";
 // Names of the other entry points: fit_mesh_to_cad (FitMeshFn), measure_against_cad (MeasureFn).
-inline constexpr const char* kFitMeshSymbol = "qualmesh_cad_plugin_fit_mesh_v2";
+inline constexpr const char* kFitMeshSymbol = "qualmesh_cad_plugin_fit_mesh_v3";
 inline constexpr const char* kMeasureSymbol = "qualmesh_cad_plugin_measure_v3";
 // project_onto_cad (ProjectFn); optional: a plugin without it leaves the mesher's boundary points on the facets.
 inline constexpr const char* kProjectSymbol = "qualmesh_cad_plugin_project_v2";

@@ -90,11 +90,11 @@ extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_load_
   });
 }
 
-extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_fit_mesh_v2(
+extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_fit_mesh_v3(
     const char* path, const qualmesh::CadOptions* options, const qualmesh::CadFitOptions* fit_options,
     qualmesh::TetMesh* mesh, qualmesh::cad_plugin::FitResult* result) noexcept {
   using namespace qualmesh;
-  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_fit_mesh_v2), cad_plugin::FitMeshFn>);
+  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_fit_mesh_v3), cad_plugin::FitMeshFn>);
   cad_plugin::guarded(&result->outcome, [&] { result->report = fit_mesh_to_cad(path, *options, *mesh, *fit_options); });
 }
 

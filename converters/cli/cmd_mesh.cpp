@@ -68,6 +68,7 @@ std::string finish_mesh(const MeshArgs& args, TetMesh& mesh, const std::optional
     r.num_flat_caps_removed += mids.num_flat_caps_removed;
     r.num_curving_caps_removed = mids.num_curving_caps_removed;
     r.num_cap_edges_split = mids.num_cap_edges_split;
+    r.num_flat_corners_split = mids.num_flat_corners_split;
   }
   char line[800];
   std::snprintf(line, sizeof line,
@@ -83,12 +84,13 @@ std::string finish_mesh(const MeshArgs& args, TetMesh& mesh, const std::optional
                   "curving:     %zu mid nodes onto their CAD faces/edges: %zu in full (%zu moving interior nodes "
                   "too, %zu placing them by a search, %zu elsewhere along their edge, %zu leaving an element below "
                   "%.2g), %zu relaxed toward straight, %zu left straight; min Jacobian ratio %.3g, %zu elements "
-                  "below %.2g; %zu flat elements (flat in the straight mesh already); %zu boundary caps removed and "
-                  "%zu interior edges of caps split so that mid nodes reach the surface\n",
+                  "below %.2g; %zu flat elements (flat in the straight mesh already); %zu boundary caps removed, "
+                  "%zu interior edges of caps and %zu edges opposite flat face corners split so that mid nodes reach "
+                  "the surface\n",
                   r.num_mid_targets, r.mids.num_full, r.mids.num_dragged, r.mids.num_optimised,
                   r.mids.num_alternative, r.mids.num_last_resort, bar, r.mids.num_partial, r.mids.num_refused,
                   r.mids.min_jacobian_ratio, r.mids.num_bad_elements, bar, r.mids.num_flat_elements,
-                  r.num_curving_caps_removed, r.num_cap_edges_split);
+                  r.num_curving_caps_removed, r.num_cap_edges_split, r.num_flat_corners_split);
     lines += line;
   }
   return lines;

@@ -470,6 +470,54 @@ std::size_t remove_boundary_caps(TetMesh& mesh, const std::function<bool(std::si
   return removed;
 }
 
+namespace {
+
+// Splits edge c-d at its midpoint m: every tetrahedron and every face of mesh.faces around it becomes two, the half
+// at c keeping its index (the half at d appended), so indices from before still name the tetrahedra and faces that
+// were not split, and so does the TetMesh::edges entry when c-d is one (its half at its first end). Orientation is
+// kept: m lies on the edge.
+void split_edge_at_midpoint(TetMesh& mesh, Index c, Index d) {
+  const Index m = static_cast<Index>(mesh.points.size());
+  mesh.points.push_back(midpoint(mesh.points[c], mesh.points[d]));
+  if (!mesh.weights.empty()) mesh.weights.push_back(0);
+  const std::size_t count = mesh.tets.size();
+  for (std::size_t t = 0; t < count; ++t) {
+    std::array<Index, 4> near_c = mesh.tets[t], near_d = mesh.tets[t];
+    int has = 0;
+    for (int i = 0; i < 4; ++i) {
+      if (near_c[i] == d) near_c[i] = m, ++has;  // (.., c, .., m): the half at c
+      if (near_d[i] == c) near_d[i] = m, ++has;  // (.., m, .., d): the half at d
+    }
+    if (has != 2) continue;
+    mesh.tets[t] = near_c;
+    mesh.tets.push_back(near_d);
+    if (!mesh.tet_region.empty()) mesh.tet_region.push_back(mesh.tet_region[t]);
+  }
+  const std::size_t num_faces = mesh.faces.size();
+  for (std::size_t f = 0; f < num_faces; ++f) {
+    std::array<Index, 3> near_c = mesh.faces[f], near_d = mesh.faces[f];
+    int has = 0;
+    for (int i = 0; i < 3; ++i) {
+      if (near_c[i] == d) near_c[i] = m, ++has;
+      if (near_d[i] == c) near_d[i] = m, ++has;
+    }
+    if (has != 2) continue;
+    mesh.faces[f] = near_c;
+    mesh.faces.push_back(near_d);
+    if (!mesh.face_facet.empty()) mesh.face_facet.push_back(mesh.face_facet[f]);
+    if (!mesh.face_marker.empty()) mesh.face_marker.push_back(mesh.face_marker[f]);
+  }
+  for (std::size_t e = 0, n = mesh.edges.size(); e < n; ++e) {
+    if (edge_key(mesh.edges[e][0], mesh.edges[e][1]) != edge_key(c, d)) continue;
+    const Index far = mesh.edges[e][0] == c ? d : c;
+    mesh.edges[e] = {mesh.edges[e][0] == c ? c : d, m};
+    mesh.edges.push_back({m, far});
+    if (!mesh.edge_marker.empty()) mesh.edge_marker.push_back(mesh.edge_marker[e]);
+  }
+}
+
+}  // namespace
+
 std::size_t split_cap_interior_edges(TetMesh& mesh, const std::function<bool(std::size_t)>& select) {
   if (mesh.is_second_order()) throw std::invalid_argument("split_cap_interior_edges: linear meshes only");
   std::vector<std::uint8_t> on_face(mesh.points.size(), 0);
@@ -512,24 +560,40 @@ std::size_t split_cap_interior_edges(TetMesh& mesh, const std::function<bool(std
   }
   std::sort(split.begin(), split.end());
   split.erase(std::unique(split.begin(), split.end()), split.end());
-  for (const auto& [c, d] : split) {
-    const Index m = static_cast<Index>(mesh.points.size());
-    mesh.points.push_back(midpoint(mesh.points[c], mesh.points[d]));
-    if (!mesh.weights.empty()) mesh.weights.push_back(0);
-    const std::size_t count = mesh.tets.size();
-    for (std::size_t t = 0; t < count; ++t) {
-      std::array<Index, 4> near_c = mesh.tets[t], near_d = mesh.tets[t];
-      int has = 0;
-      for (int i = 0; i < 4; ++i) {
-        if (near_c[i] == d) near_c[i] = m, ++has;  // (.., c, .., m): the half at c
-        if (near_d[i] == c) near_d[i] = m, ++has;  // (.., m, .., d): the half at d
+  for (const auto& [c, d] : split) split_edge_at_midpoint(mesh, c, d);
+  return split.size();
+}
+
+std::size_t split_flat_face_corners(TetMesh& mesh, const std::function<bool(std::size_t)>& select, double flat_deg) {
+  if (mesh.is_second_order()) throw std::invalid_argument("split_flat_face_corners: linear meshes only");
+  std::map<std::array<Index, 3>, std::size_t> face_index;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    std::array<Index, 3> key = mesh.faces[f];
+    std::sort(key.begin(), key.end());
+    face_index.emplace(key, f);
+  }
+  const double flat_cos = std::cos(flat_deg * 3.14159265358979323846 / 180);
+  std::vector<std::array<Index, 2>> split;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    if (!select(t)) continue;
+    const auto& v = mesh.tets[t];
+    for (int i = 0; i < 4; ++i) {
+      std::array<Index, 3> key{v[(i + 1) & 3], v[(i + 2) & 3], v[(i + 3) & 3]};
+      std::sort(key.begin(), key.end());
+      if (!face_index.count(key)) continue;
+      for (int k = 0; k < 3; ++k) {  // the corner at key[k], opposite edge key[k+1]-key[k+2]
+        const Point3 &p = mesh.points[key[k]], &a = mesh.points[key[(k + 1) % 3]], &b = mesh.points[key[(k + 2) % 3]];
+        const Point3 u{a[0] - p[0], a[1] - p[1], a[2] - p[2]}, w{b[0] - p[0], b[1] - p[1], b[2] - p[2]};
+        const double uw = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+        const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+        if (uu <= 0 || ww <= 0 || uw >= flat_cos * std::sqrt(uu * ww)) continue;
+        split.push_back({std::min(key[(k + 1) % 3], key[(k + 2) % 3]), std::max(key[(k + 1) % 3], key[(k + 2) % 3])});
       }
-      if (has != 2) continue;
-      mesh.tets[t] = near_c;  // a vertex moved along the edge keeps the orientation
-      mesh.tets.push_back(near_d);
-      if (!mesh.tet_region.empty()) mesh.tet_region.push_back(mesh.tet_region[t]);
     }
   }
+  std::sort(split.begin(), split.end());
+  split.erase(std::unique(split.begin(), split.end()), split.end());
+  for (const auto& [c, d] : split) split_edge_at_midpoint(mesh, c, d);
   return split.size();
 }
 

@@ -522,5 +522,47 @@ TEST(CapEdges, TheInteriorEdgeOfACapAcrossACadEdgeIsSplit) {
   EXPECT_EQ(m.faces.size(), 2u);
 }
 
+// A boundary triangle a-c-b with a 171-degree corner at c (a straight CAD edge running into an arc at c, as on
+// part.step's Face20): the edge a-b opposite that corner is split at its midpoint even though it is a CAD edge
+// (TetMesh::edges), so the tetrahedron, the face and the edge entry each become two, with their labels, the
+// orientation and the volume kept. A tetrahedron not selected, or whose faces have no corner above the bound, is
+// left alone.
+TEST(FlatFaceCorners, TheEdgeOppositeAFlatCornerIsSplit) {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {2, 0, 0}, {4, -0.31, 0}, {2, -1, -2}};
+  m.tets = {{0, 1, 2, 3}};
+  if (signed_six_volume(m, 0) < 0) std::swap(m.tets[0][0], m.tets[0][1]);
+  ASSERT_GT(signed_six_volume(m, 0), 0);
+  m.tet_region = {1};
+  m.faces = {{0, 1, 2}};
+  m.face_marker = {20};
+  m.edges = {{0, 1}, {1, 2}, {0, 2}};
+  m.edge_marker = {3, 4, 5};
+  const double before = signed_six_volume(m, 0);
+  TetMesh unselected = m;
+  EXPECT_EQ(split_flat_face_corners(unselected, [](std::size_t) { return false; }), 0u);
+  TetMesh sharper = m;
+  EXPECT_EQ(split_flat_face_corners(sharper, [](std::size_t) { return true; }, 175), 0u);  // 171 < 175
+  EXPECT_EQ(sharper.points.size(), 4u);
+  EXPECT_EQ(split_flat_face_corners(m, [](std::size_t) { return true; }), 1u);
+  ASSERT_EQ(m.points.size(), 5u);
+  EXPECT_EQ(m.points[4], (Point3{2, -0.155, 0}));
+  ASSERT_EQ(m.tets.size(), 2u);
+  EXPECT_EQ(m.tet_region, (std::vector<int>{1, 1}));
+  double after = 0;
+  for (std::size_t t = 0; t < 2; ++t) {
+    EXPECT_GT(signed_six_volume(m, t), 0) << t;
+    after += signed_six_volume(m, t);
+  }
+  EXPECT_NEAR(after, before, 1e-12);
+  ASSERT_EQ(m.faces.size(), 2u);
+  EXPECT_EQ(m.face_marker, (std::vector<int>{20, 20}));
+  for (const auto& f : m.faces) EXPECT_EQ(std::count(f.begin(), f.end(), Index(4)), 1);
+  ASSERT_EQ(m.edges.size(), 4u);
+  EXPECT_EQ(m.edge_marker, (std::vector<int>{3, 4, 5, 5}));
+  EXPECT_EQ(m.edges[2], (std::array<Index, 2>{0, 4}));
+  EXPECT_EQ(m.edges[3], (std::array<Index, 2>{4, 2}));
+}
+
 }  // namespace
 }  // namespace qualmesh

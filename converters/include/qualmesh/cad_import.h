@@ -179,6 +179,9 @@ struct CadFitReport {
   std::size_t num_curving_caps_removed = 0;
   // Second order: interior edges of caps across a CAD edge split for the same reason (split_cap_interior_edges).
   std::size_t num_cap_edges_split = 0;
+  // Second order: edges of boundary triangles opposite a corner the curve makes flat, split for the same reason
+  // (split_flat_face_corners).
+  std::size_t num_flat_corners_split = 0;
 };
 
 // Moves every boundary node of `mesh` onto the CAD face or edge it lies on: a node on one marked edge (Edge<e>)
