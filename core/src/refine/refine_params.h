@@ -86,9 +86,10 @@ struct RefineParams {
   // dihedral angle 0.35 degrees (with 30: 15.0 degrees, 3.4 times faster). Dihedral angles and elevations keep 90:
   // with them at 30 too, Rule 3's splits between facets at 45 degrees (t13_data.stl) and 30.1 degrees (cheese.off)
   // did not finish in 400 s. CAD inputs whose boundary points are projected onto the CAD surface
-  // (MeshOptions::project_to_boundary) keep 90 for now: there it helped the pump carter (min dihedral 5.4 -> 15.0
-  // degrees at --size 44.13) but not the tapered face corners of t20_data.step (3.3 -> 0.63) and part.step, and at
-  // part.step --size 10 --order 2 two mid nodes could no longer reach their face (0.02 mm off it).
+  // (MeshOptions::project_to_boundary) keep 90: bench_cad_gmsh.py with 30 there, all 12 files at 3 sizes, gave the
+  // pump carter and Kurbelwelle 13.4-15.0 degrees where 90 gives 5.4-12.9, but t20_data.step at 1.469 fell from 4.3
+  // to 1.8 degrees (11 -> 39 tets below 10), wrenchnut at 20.3 and model1 at 378.9 from 15.0 to 11.0 and 12.7, and
+  // node counts grew by up to 36% (pump carter) and 11% (Zylkopf, already 1.7x Gmsh's): no target changed sides.
   double corner_acute_deg = kPaperAcuteDeg;
   // MeshOptions::min_split_length, squared (0 = none): the user's floor, applied under the relaxed rule only. The
   // relaxed rule's conflict-zone budget (scheduler.cpp) applies where it is 0.
