@@ -116,8 +116,12 @@ class Projector {
   // leave the face where that boundary bends into it, and so can its midpoint's projection onto the surface:
   // part.step's planar Face20 at --size 10 had a mid node 0.0155 outside its B-spline edge, where FreeCAD's node
   // search did not find it. A node on the boundary itself would be found on the edge and the neighbouring face too.
+  // Planar faces only: on a periodic face that winds more than once around its axis the classifier misjudges points
+  // inside it as outside (bottle.brep's thread: 204 mid nodes were sent to mirror images and relaxed part way, and
+  // the curving took twice as long), as BRepExtrema does (face_distance.cpp).
   void into_trimmed_face(int f, Point3& target) {
-    if (f < 1 || f > faces_.Extent()) return;
+    const FaceData* data = face(f);
+    if (!data || !data->planar) return;
     const TopoDS_Face& face = TopoDS::Face(faces_(f));
     const double tolerance = BRep_Tool::Tolerance(face);
     const auto inside = [&](const Point3& x) {
