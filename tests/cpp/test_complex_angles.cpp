@@ -4,7 +4,10 @@
 // (RefineParams::corner_acute_deg, refine_params.h). Counted by hand on triangular prisms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "refine/complex.h"
 
@@ -73,6 +76,45 @@ TEST(ComplexAngles, SmallCornersStayAcuteUnderBothRules) {
   // The corner at B is 80 degrees: acute for the paper only.
   EXPECT_TRUE(paper.elements_meet_acute(segment(paper, 0, 1), segment(paper, 1, 2)));
   EXPECT_FALSE(relaxed.elements_meet_acute(segment(relaxed, 0, 1), segment(relaxed, 1, 2)));
+}
+
+// The answers are cached by element pair, and a facet pair's key once shared its bits with the next facet's:
+// with the sides first (AB 0, BC 1, CA 2, bottom 3, top 4), the sides on AB and CA meet at 45 degrees, the side on
+// AB and the bottom at 90, and asking for (0, 2) first made (0, 3) "acute" too.
+TEST(ComplexAngles, CachedFacetPairsDoNotShareAnswers) {
+  Plc plc = triangular_prism(1, 1);
+  std::rotate(plc.facets.begin(), plc.facets.begin() + 2, plc.facets.end());
+  for (double corner : {detail::kPaperAcuteDeg, detail::kSteinerCornerAcuteDeg}) {
+    const InputComplex c = detail::build_input_complex(plc, false, corner);
+    EXPECT_TRUE(c.elements_meet_acute({Kind::Facet, 0}, {Kind::Facet, 2}));
+    EXPECT_FALSE(c.elements_meet_acute({Kind::Facet, 0}, {Kind::Facet, 3}));
+    EXPECT_FALSE(c.elements_meet_acute({Kind::Facet, 3}, {Kind::Facet, 0}));
+    EXPECT_TRUE(c.elements_meet_acute({Kind::Facet, 2}, {Kind::Facet, 0}));
+  }
+}
+
+// The fast rejection of pairs with an input vertex (InputComplex::is_apex): two elements through a vertex meet at
+// an acute angle there only at A and C, whose vertical edges carry the 45-degree dihedral angles; under the relaxed
+// rule B's right angles make it no apex, yet B meets C at an acute angle (their sides meet along CC'), because
+// every vertex of an element through B counts (reaches_apex). A cube has no apex: no two of its vertices meet acutely.
+TEST(ComplexAngles, ApicesDecideThePairsWithAVertex) {
+  const Plc prism = triangular_prism(1, 1);  // the complex keeps a pointer to its Plc
+  const InputComplex c = detail::build_input_complex(prism, false, detail::kSteinerCornerAcuteDeg);
+  EXPECT_TRUE(c.is_apex(0));
+  EXPECT_FALSE(c.is_apex(1));
+  EXPECT_TRUE(c.is_apex(2));
+  EXPECT_TRUE(c.reaches_apex(1));
+  EXPECT_TRUE(c.elements_meet_acute({Kind::Vertex, 1}, {Kind::Vertex, 2}));
+  Plc cube;
+  for (int i = 0; i < 8; ++i) cube.vertices.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  for (const std::array<Index, 4>& q : std::vector<std::array<Index, 4>>{
+           {0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}})
+    cube.facets.push_back(Facet{{{q[0], q[1], q[2], q[3]}}});
+  const InputComplex box = detail::build_input_complex(cube);
+  for (Index u = 0; u < 8; ++u) {
+    EXPECT_FALSE(box.is_apex(u)) << u;
+    for (Index w = 0; w < 8; ++w) EXPECT_FALSE(box.elements_meet_acute({Kind::Vertex, u}, {Kind::Vertex, w}));
+  }
 }
 
 }  // namespace

@@ -166,6 +166,50 @@ bool InputComplex::element_contains_vertex(ElementRef e, Index v) const {
   return false;
 }
 
+bool InputComplex::is_apex(Index v) const {
+  if (apex_state.empty()) apex_state.assign(vertex_segments.size(), 0);
+  if (apex_state[v] == 0) {
+    std::vector<ElementRef> through;
+    for (Index s : vertex_segments[v]) through.push_back({ElementKind::Segment, s});
+    for (Index f : vertex_facets[v]) through.push_back({ElementKind::Facet, f});
+    bool apex = false;
+    for (std::size_t i = 0; i < through.size() && !apex; ++i)
+      for (std::size_t j = i + 1; j < through.size() && !apex; ++j) apex = elements_meet_acute(through[i], through[j]);
+    apex_state[v] = apex ? 2 : 1;
+  }
+  return apex_state[v] == 2;
+}
+
+bool InputComplex::element_has_apex(ElementRef e) const {
+  switch (e.kind) {
+    case ElementKind::Vertex: return is_apex(e.id);
+    case ElementKind::Segment: return is_apex(segments[e.id].a) || is_apex(segments[e.id].b);
+    case ElementKind::Facet:
+      if (facet_apex_state.empty()) facet_apex_state.assign(facet_vertices.size(), 0);
+      if (facet_apex_state[e.id] == 0) {
+        bool apex = false;
+        for (Index v : facet_vertices[e.id])
+          if ((apex = is_apex(v))) break;
+        facet_apex_state[e.id] = apex ? 2 : 1;
+      }
+      return facet_apex_state[e.id] == 2;
+  }
+  return true;
+}
+
+bool InputComplex::reaches_apex(Index v) const {
+  if (reach_state.empty()) reach_state.assign(vertex_segments.size(), 0);
+  if (reach_state[v] == 0) {
+    bool apex = is_apex(v);
+    for (Index s : vertex_segments[v])
+      if (!apex) apex = element_has_apex({ElementKind::Segment, s});
+    for (Index f : vertex_facets[v])
+      if (!apex) apex = element_has_apex({ElementKind::Facet, f});
+    reach_state[v] = apex ? 2 : 1;
+  }
+  return reach_state[v] == 2;
+}
+
 bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
   if (a.kind == ElementKind::Vertex && b.kind == ElementKind::Vertex && a.id == b.id) return false;
   if (b.kind == ElementKind::Vertex) std::swap(a, b);
@@ -179,6 +223,8 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
     if (const std::uint8_t* cached = cache.find(key)) return *cached != 0;
     const bool acute = [&] {
       if (element_contains_vertex(b, a.id)) return false;
+      if (!reaches_apex(a.id)) return false;  // exact: see is_apex
+      if (b.kind == ElementKind::Vertex ? !reaches_apex(b.id) : !element_has_apex(b)) return false;
       for (Index s : vertex_segments[a.id])
         if (elements_meet_acute({ElementKind::Segment, s}, b)) return true;
       for (Index f : vertex_facets[a.id])
@@ -190,9 +236,12 @@ bool InputComplex::elements_meet_acute(ElementRef a, ElementRef b) const {
   }
   if (a.kind == b.kind && a.id == b.id) return false;
   if (b.kind < a.kind || (a.kind == b.kind && b.id < a.id)) std::swap(a, b);
-  const std::uint64_t k = (std::uint64_t(a.id) << 33) | (std::uint64_t(b.id) << 2) |
-                          (std::uint64_t(a.kind) << 1) | std::uint64_t(b.kind == ElementKind::Facet);
-  const std::uint64_t cache_key = k ^ (std::uint64_t(a.kind == ElementKind::Facet) << 63);
+  // The two low bits say which pair it is (segment-segment 0, segment-facet 1, facet-facet 2), below b's id. They
+  // once held the kind's raw value shifted by one, so a facet-facet key set bit 2, b's lowest id bit: the pairs
+  // (f, 2m) and (f, 2m + 1) shared one answer, and on bunny00.off two facets with no common vertex were answered
+  // "acute" from their neighbour's entry.
+  const std::uint64_t pair_code = a.kind == ElementKind::Facet ? 2 : b.kind == ElementKind::Facet ? 1 : 0;
+  const std::uint64_t cache_key = (std::uint64_t(a.id) << 33) | (std::uint64_t(b.id) << 2) | pair_code;
   if (const std::uint8_t* cached = acute_pair_cache.find(cache_key)) return *cached != 0;
   bool acute = false;
   auto seg_dir = [&](Index s, Index v) {

@@ -107,6 +107,16 @@ struct InputComplex {
   mutable FlatMap<std::uint8_t> acute_pair_cache;  // 1: acute
   // Pairs with an input vertex (elements_meet_acute), by the other element's kind: (vertex id << 32 | other id).
   mutable std::array<FlatMap<std::uint8_t>, 3> vertex_pair_cache;
+  // An exact fast rejection for the pairs with an input vertex. Two elements that meet at an acute angle do so at a
+  // common input vertex y, and then y is an "apex": two of the elements through y meet at an acute angle. So an
+  // input vertex u meets an element E at an acute angle only if some vertex of an element through u (u's reach)
+  // is an apex and so is some vertex of E. On a smooth tessellated surface under the relaxed rule few vertices are
+  // apices, and most pairs are answered here without the (segments x facets)^2 element pairs. Lazy, cached:
+  // 0 not known yet, 1 no, 2 yes.
+  bool is_apex(Index v) const;             // two elements through v meet at an acute angle
+  bool reaches_apex(Index v) const;        // some vertex of an element through v (v included) is an apex
+  bool element_has_apex(ElementRef e) const;  // some vertex of e is an apex
+  mutable std::vector<std::uint8_t> apex_state, reach_state, facet_apex_state;
 
   // Ray queries at a facet's own corners and edges in O(log n) instead of a scan of its n edges (issue 18 item 6:
   // an 8000-gon took 39 s; complex_rays.cpp). For polygons that do not cross, the parity that facet_covers_ray counts
