@@ -115,7 +115,7 @@ class Projector {
   // the boundary point itself only when neither is inside. The chord between two points of a face's boundary can
   // leave the face where that boundary bends into it, and so can its midpoint's projection onto the surface:
   // part.step's planar Face20 at --size 10 had a mid node 0.0155 outside its B-spline edge, where FreeCAD's node
-  // search did not find it. A node on the boundary itself would be found on the edge and the neighbouring face too.
+  // search did not find it (with the 30-degree corner bound tried on CAD inputs; refine_params.h). A node on the boundary itself would be found on the edge and the neighbouring face too.
   // Planar faces only: on a periodic face that winds more than once around its axis the classifier misjudges points
   // inside it as outside (bottle.brep's thread: 204 mid nodes were sent to mirror images and relaxed part way, and
   // the curving took twice as long), as BRepExtrema does (face_distance.cpp).

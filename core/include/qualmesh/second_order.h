@@ -128,13 +128,14 @@ std::size_t remove_boundary_caps(TetMesh& mesh, const std::function<bool(std::si
 std::size_t split_cap_interior_edges(TetMesh& mesh, const std::function<bool(std::size_t)>& select);
 
 // Splits at its midpoint, in each tetrahedron `select(t)` picks, the edge of a boundary face (mesh.faces) that lies
-// opposite a corner of more than flat_deg, unless that edge is a TetMesh::edges entry. A boundary triangle whose two
-// edges at a corner follow one smooth CAD curve (a straight edge running tangentially into an arc: the corner is
-// 171 degrees on part.step's Face20 at --size 10) has that corner at 180 degrees once its mid nodes follow the
-// curve, and no element on it keeps a positive Jacobian. Every tetrahedron and face around the edge is split in
-// two (the halves at the edge's smaller end keep their indices, the others are appended); the new vertex lies on
-// the edge's chord, on a planar face exactly (a curved face's caller projects it). Linear meshes only. Returns how
-// many edges were split; the new vertices are appended.
+// opposite a corner of more than flat_deg, a TetMesh::edges entry too. A boundary triangle whose two edges at a
+// corner follow one smooth CAD curve, a straight edge running tangentially into an arc, has that corner at 180
+// degrees once its mid nodes follow the curve, and no element on it keeps a positive Jacobian (part.step's Face20 at
+// --size 10: 171 degrees, a triangle bounded by three CAD edges, when CAD inputs were tried with the 30-degree corner
+// bound). Every tetrahedron, face and edge entry on the edge is split in two (the halves at the edge's first end
+// keep their indices, the others are appended); the new vertex lies on the edge's chord, on a planar face or a
+// straight edge exactly (fit_mesh_to_cad projects it onto a curved one). Linear meshes only. Returns how many edges
+// were split; the new vertices are appended.
 std::size_t split_flat_face_corners(TetMesh& mesh, const std::function<bool(std::size_t)>& select,
                                     double flat_deg = 150);
 
