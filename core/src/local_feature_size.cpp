@@ -223,8 +223,8 @@ std::vector<std::vector<std::array<Index, 3>>> plc_facet_triangles(const Plc& pl
     const Facet& facet = plc.facets[f];
     const auto frame = detail::compute_facet_frame(plc.vertices, facet);
     if (!frame) continue;
-    // A lone triangle is its own triangulation (a tessellated surface is all of them: bunny00.off's 75408 facets
-    // spent 3% of its run in 2D constrained triangulations).
+    // A lone triangle is its own triangulation (a tessellated surface is all of them: for bunny00.off's 75408
+    // facets the 2D constrained triangulations took about 0.4 s of a 9.5 s run).
     if (facet.polygons.size() == 1 && facet.polygons[0].size() == 3 && facet.holes.empty()) {
       const auto& t = facet.polygons[0];
       out[f].push_back({t[0], t[1], t[2]});
