@@ -90,6 +90,11 @@ LocalFeatureSize::LocalFeatureSize(const Plc& plc,
       for (const auto& t : facet_triangles[f]) primitives_.push_back({PrimitiveKind::Triangle, t, id});
     }
   }
+  for (Primitive& p : primitives_) {
+    const int n = p.kind == PrimitiveKind::Point ? 1 : (p.kind == PrimitiveKind::Segment ? 2 : 3);
+    for (int k = 0; k < n; ++k)
+      for (int i = 0; i < 3; ++i) p.centroid[i] += points_[p.vertices[k]][i] / n;
+  }
   if (!primitives_.empty()) build(0, static_cast<std::uint32_t>(primitives_.size()));
 }
 
@@ -97,17 +102,10 @@ std::uint32_t LocalFeatureSize::build(std::uint32_t first, std::uint32_t count) 
   Node node{};
   BoundingBox box;
   BoundingBox centroid_box;
-  auto centroid = [this](const Primitive& p) {
-    const int n = p.kind == PrimitiveKind::Point ? 1 : (p.kind == PrimitiveKind::Segment ? 2 : 3);
-    Point3 c{0, 0, 0};
-    for (int k = 0; k < n; ++k)
-      for (int i = 0; i < 3; ++i) c[i] += points_[p.vertices[k]][i] / n;
-    return c;
-  };
   for (std::uint32_t i = first; i < first + count; ++i) {
     const Primitive& p = primitives_[i];
     for (Index v : p.vertices) box.add(points_[v]);
-    centroid_box.add(centroid(p));
+    centroid_box.add(p.centroid);
   }
   node.box_min = box.min;
   node.box_max = box.max;
@@ -125,7 +123,7 @@ std::uint32_t LocalFeatureSize::build(std::uint32_t first, std::uint32_t count) 
   const std::uint32_t half = count / 2;
   std::nth_element(primitives_.begin() + first, primitives_.begin() + first + half,
                    primitives_.begin() + first + count, [&](const Primitive& a, const Primitive& b) {
-                     const double ca = centroid(a)[axis], cb = centroid(b)[axis];
+                     const double ca = a.centroid[axis], cb = b.centroid[axis];
                      if (ca != cb) return ca < cb;
                      return std::tie(a.element, a.vertices) < std::tie(b.element, b.vertices);  // determinism
                    });

@@ -44,6 +44,7 @@ class LocalFeatureSize {
     PrimitiveKind kind;
     std::array<Index, 3> vertices;  // PLC vertex ids (1, 2 or 3 used)
     Index element;                  // owning element
+    Point3 centroid{};              // the build's split key, computed once
   };
   struct Element {
     std::vector<Index> vertices;  // sorted vertex ids: adjacency = non-empty intersection
