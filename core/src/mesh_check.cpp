@@ -422,12 +422,15 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
       FacetCoverage coverage;
       coverage.facet = static_cast<Index>(f);
       coverage.marker = plc.facets[f].marker;
+      coverage.bounds_domain = volume.facet_bounds_domain.empty() || volume.facet_bounds_domain[f];
       coverage.area = facets[f].degenerate ? 0 : facets[f].area;
       coverage.covered_area = covered[f];
-      coverage.relative_error = coverage.area > 0
-                                    ? std::fabs(covered[f] - coverage.area) / std::max(coverage.area, area_floor)
-                                    : (covered[f] > 0 ? inf : 0);
-      report.facet_area += coverage.area;
+      // A facet with no cell of the domain on either side is to be covered by nothing.
+      const double to_cover = coverage.bounds_domain ? coverage.area : 0;
+      coverage.relative_error = to_cover > 0 ? std::fabs(covered[f] - to_cover) / std::max(to_cover, area_floor)
+                                : coverage.area > 0 ? covered[f] / std::max(coverage.area, area_floor)
+                                                    : (covered[f] > 0 ? inf : 0);
+      report.facet_area += to_cover;
       report.max_facet_area_relative_error = std::max(report.max_facet_area_relative_error, coverage.relative_error);
       // A facet flat only to d has its area defined to about 2 d times its perimeter (the tilt of its loops).
       const double unflat_area =
@@ -435,7 +438,10 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
       if (!(coverage.relative_error <= options.relative_area_tolerance + unflat_area)) {
         ++report.num_miscovered_facets;
         problems.add("facet " + std::to_string(f) + " (marker " + std::to_string(coverage.marker) + "): covered area " +
-                     number(coverage.covered_area) + " vs area " + number(coverage.area) + " (relative error " +
+                     number(coverage.covered_area) + " vs area " +
+                     (coverage.bounds_domain ? number(coverage.area)
+                                             : "0 (holes or the outside on both sides: no tetrahedron touches it)") +
+                     " (relative error " +
                      number(coverage.relative_error) + ")");
       }
       report.facets.push_back(coverage);

@@ -62,6 +62,10 @@ LocalFrame make_local_frame(const Plc& plc, const std::vector<Point3>& mesh_poin
 struct ReferenceVolume {
   double volume = 0;   // NaN when unsupported
   std::string method;  // "closed-shells (...)" or "cells (...)"
+  // Per facet (the "cells" method only; empty: every facet): 1 when a cell of the domain lies on at least one of its
+  // sides. A facet with holes or the unbounded cell on both sides (a hole's face seen through a facet hole, as in
+  // example.poly) bounds no tetrahedron: nothing is to cover it.
+  std::vector<char> facet_bounds_domain;
 };
 
 // The volume the input encloses, by one of two methods:

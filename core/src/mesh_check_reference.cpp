@@ -337,18 +337,36 @@ ReferenceVolume compute_cell_volume(const Plc& plc, const std::vector<FacetGeome
   };
   std::set<std::size_t> hole_cells;
   for (const Point3& h : plc.holes) hole_cells.insert(cell_of(h, kNoIndex));
-  double volume = 0;
+  // The cell each component faces: itself when it encloses a cell, else the innermost cell around it (none: the
+  // unbounded cell). A cell is in the domain unless it is unbounded or holds a hole seed.
+  const std::size_t none = static_cast<std::size_t>(-1);
+  std::map<std::size_t, std::size_t> cell_faced;
+  for (const auto& [root, list] : component_sides) {
+    const double v = component_volume[root];
+    if (v > tiny * scale) {
+      cell_faced[root] = root;
+    } else {
+      const Index probe = facets[list.front() / 2].loops[0][0];
+      cell_faced[root] = cell_of(plc.vertices[probe], probe);
+    }
+  }
+  const auto in_domain = [&](std::size_t cell) { return cell != none && !hole_cells.count(cell); };
+  ReferenceVolume result;
   for (std::size_t root : positive) {
-    if (!hole_cells.count(root)) volume += component_volume[root];
+    if (in_domain(root)) result.volume += component_volume[root];
   }
   for (std::size_t root : negative) {
-    const FacetGeometry& g = facets[component_sides[root].front() / 2];
-    const Index probe = g.loops[0][0];
-    const std::size_t cell = cell_of(plc.vertices[probe], probe);
-    if (cell != static_cast<std::size_t>(-1) && !hole_cells.count(cell)) volume += component_volume[root];
+    if (in_domain(cell_faced[root])) result.volume += component_volume[root];
   }
-  return {volume, "cells (" + std::to_string(positive.size()) + " bounded cells, " +
-                      std::to_string(plc.holes.size()) + " hole seeds; internal facets or holes)"};
+  result.facet_bounds_domain.assign(num_facets, 1);
+  for (std::size_t f = 0; f < num_facets; ++f) {
+    if (facets[f].degenerate) continue;
+    result.facet_bounds_domain[f] =
+        in_domain(cell_faced[sides.find(2 * f)]) || in_domain(cell_faced[sides.find(2 * f + 1)]);
+  }
+  result.method = "cells (" + std::to_string(positive.size()) + " bounded cells, " +
+                  std::to_string(plc.holes.size()) + " hole seeds; internal facets or holes)";
+  return result;
 }
 
 }  // namespace

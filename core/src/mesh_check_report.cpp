@@ -104,7 +104,8 @@ std::string to_json(const CheckReport& r) {
     for (std::size_t i = 0; i < r.facets.size(); ++i) {
       const FacetCoverage& f = r.facets[i];
       facets += std::string(i ? ",\n    " : "\n    ") + "{\"facet\": " + std::to_string(f.facet) +
-                ", \"marker\": " + std::to_string(f.marker) + ", \"area\": " + json_number(f.area) +
+                ", \"marker\": " + std::to_string(f.marker) +
+                ", \"bounds_domain\": " + (f.bounds_domain ? "true" : "false") + ", \"area\": " + json_number(f.area) +
                 ", \"covered_area\": " + json_number(f.covered_area) +
                 ", \"relative_error\": " + json_number(f.relative_error) + "}";
     }

@@ -261,6 +261,25 @@ TEST(MeshCheck, TwoRegionsAndAVolumeHole) {
   plc.holes.push_back({1.5, 0.5, 0.5});
   r = check_mesh(TetMesh{}, &plc);
   EXPECT_NEAR(r.reference_volume, 1.0, 1e-14) << r.reference_volume_method;
+  // Only the first cube is meshed. The facets of the two hole cubes, the one at x = 2 between them included, have
+  // no tetrahedron on either side: nothing is to cover them, and the first cube's mesh conforms.
+  r = check_mesh(kuhn_unit_cube(), &plc);
+  ASSERT_EQ(r.facets.size(), 16u);
+  for (std::size_t f = 0; f < 16; ++f) {
+    const bool first_cube = f <= 1 || (f >= 4 && f <= 7);
+    EXPECT_EQ(r.facets[f].bounds_domain, first_cube) << "facet " << f;
+    EXPECT_EQ(r.facets[f].area, 1.0) << "facet " << f;
+  }
+  EXPECT_EQ(r.num_miscovered_facets, 0u);
+  EXPECT_EQ(r.facet_area, 6.0);
+  EXPECT_TRUE(r.ok) << to_text(r);
+  // A face on a facet between two holes is a defect: a tetrahedron of the first cube moved into the second.
+  TetMesh moved = kuhn_unit_cube();
+  for (Point3& p : moved.points) p[0] += 1;
+  r = check_mesh(moved, &plc);
+  EXPECT_GT(r.facets[2].covered_area, 0.0);
+  EXPECT_GE(r.num_miscovered_facets, 1u);
+  EXPECT_FALSE(r.ok);
 }
 
 TEST(MeshCheck, FacetWithAHoleLoopAndAHolePoint) {

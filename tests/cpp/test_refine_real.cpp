@@ -45,13 +45,10 @@ std::size_t expect_quality_mesh(const std::string& name, MeshOptions options = {
   EXPECT_TRUE(report.has_reference) << name;
   EXPECT_LT(report.volume_relative_error, 1e-9) << name << " " << report.reference_volume_method;
   EXPECT_EQ(report.num_faces_off_input, 0u) << name;
-  // Known gap (issue 3): near-flat tetrahedra lying on tilted facets (four vertices on one facet, off its plane by
-  // rounding) put a second face within the checker's tolerance of the facet, so the per-facet covered area can
-  // exceed the facet's (joint: 2 of 130 facets, 1.7 %). Enable when those tetrahedra are removed.
-  if (std::getenv("QUALMESH_STRICT_COVERAGE")) {
-    EXPECT_LT(report.max_facet_area_relative_error, 1e-9) << name;
-    EXPECT_EQ(report.num_miscovered_facets, 0u) << name;
-  }
+  // Every facet covered to its area, and a facet bounding no region (example.poly's hole face behind its facet
+  // hole) by nothing.
+  EXPECT_LT(report.max_facet_area_relative_error, 1e-9) << name;
+  EXPECT_EQ(report.num_miscovered_facets, 0u) << name;
 
   // rho0 (Rule 3) for the engine's tets; the improvement pass (on by default with pumping) may change tets up to
   // kImproveRadiusEdgeFactor * rho0 away from acute input angles (mesher.h).

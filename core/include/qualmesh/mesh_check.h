@@ -50,9 +50,11 @@ struct CheckOptions {
 struct FacetCoverage {
   Index facet = 0;            // 0-based index into Plc::facets
   int marker = 0;             // Facet::marker
+  bool bounds_domain = true;  // a region of the domain lies on at least one side; else nothing is to cover it (a
+                              // hole's face seen through a facet hole, a facet between two holes, an open input)
   double area = 0;            // area of the facet (polygons by the even-odd rule, less its holes)
   double covered_area = 0;    // total area of the mesh boundary faces found on it
-  double relative_error = 0;  // |covered_area - area| / max(area, 1e-6 diagonal^2), see mesh_check.cpp
+  double relative_error = 0;  // |covered_area - area to cover| / max(area, 1e-6 diagonal^2), see mesh_check.cpp
 };
 
 struct CheckReport {
