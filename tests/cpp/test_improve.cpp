@@ -329,6 +329,62 @@ TEST(Improve, CapOnACurvedCadFaceIsRemovedByFlippingItsBoundaryEdge) {
             0u);
 }
 
+// A flat tet of fandisk.off (0.108 degrees) with the three tets around its interior edge ab, all six corners input
+// vertices (so none moves): the flat tet abcf has two boundary faces, acf and bcf, at a noise fold of the floor
+// z = -0.5, and a, d, e, f lie on the wall x = 0.4603. No 2-3 flip is valid and edge removal of ab would make a
+// tet of a, d, e, f, so only a new vertex helps. Its midpoint start leaves two flat halves that the radius-edge
+// guard forbids, and the smoother cannot take a first step out of them; from the ring's side the split is kept.
+TEST(Improve, FlatTetAtANoiseFoldGetsAVertexStartedInsideItsEdgesStar) {
+  Plc plc;
+  plc.vertices = {{0.4603, 0.23725, -0.4999}, {0.4415, 0.25555, -0.4997}, {0.4384, 0.23875, -0.4996},
+                  {0.4603, 0.23705, -0.4812}, {0.4603, 0.25555, -0.4812}, {0.4603, 0.25555, -0.5}};  // a .. f
+  TetMesh mesh;
+  mesh.points = plc.vertices;
+  const auto& p = mesh.points;
+  for (std::array<Index, 4> t : {std::array<Index, 4>{3, 0, 2, 1}, std::array<Index, 4>{3, 0, 1, 4},
+                                 std::array<Index, 4>{0, 4, 5, 1}, std::array<Index, 4>{0, 1, 5, 2}}) {
+    if (qualmesh::tet_signed_volume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) < 0) std::swap(t[0], t[1]);
+    mesh.tets.push_back(t);
+    mesh.tet_region.push_back(1);
+  }
+  // The boundary: the faces of one tet only, each oriented away from its tet (its own facet).
+  std::map<std::array<Index, 3>, int> count;
+  for (const auto& t : mesh.tets)
+    for (int k = 0; k < 4; ++k) {
+      std::array<Index, 3> f{t[(k + 1) & 3], t[(k + 2) & 3], t[(k + 3) & 3]};
+      std::sort(f.begin(), f.end());
+      ++count[f];
+    }
+  for (const auto& t : mesh.tets)
+    for (int k = 0; k < 4; ++k) {
+      std::array<Index, 3> f{t[(k + 1) & 3], t[(k + 2) & 3], t[(k + 3) & 3]};
+      std::array<Index, 3> key = f;
+      std::sort(key.begin(), key.end());
+      if (count[key] != 1) continue;
+      if (qualmesh::tet_signed_volume(p[f[0]], p[f[1]], p[f[2]], p[t[k]]) > 0) std::swap(f[1], f[2]);
+      qualmesh::Facet facet;
+      facet.polygons.push_back({f[0], f[1], f[2]});
+      mesh.faces.push_back(f);
+      mesh.face_facet.push_back(int(plc.facets.size()));
+      mesh.face_marker.push_back(0);
+      plc.facets.push_back(facet);
+    }
+  ASSERT_EQ(mesh.faces.size(), 8u);
+  ASSERT_LT(min_dihedral(mesh), 0.11);
+  const TetMesh original = mesh;
+  qualmesh::detail::ImproveOptions options;
+  options.radius_edge_bound = qualmesh::kImproveRadiusEdgeFactor * 2;  // as mesh_plc sets it (rho0 = 2)
+  const auto r = qualmesh::detail::improve_mesh(mesh, plc, options);
+  EXPECT_EQ(r.num_vertex_moves + r.num_flips, 0u);
+  EXPECT_EQ(r.num_insertions, 1u);
+  ASSERT_EQ(mesh.points.size(), 7u);
+  EXPECT_TRUE(std::equal(original.points.begin(), original.points.end(), mesh.points.begin()));
+  EXPECT_EQ(mesh.tets.size(), 8u);  // the new vertex joined to the 8 boundary faces
+  EXPECT_EQ(mesh.faces, original.faces);
+  EXPECT_GT(min_dihedral(mesh), 15.0);
+  expect_conforming(mesh, plc, "noise fold");
+}
+
 TEST(Improve, ConstrainedVerticesMoveOnlyAlongTheirLineOrPlane) {
   const Plc plc = unit_box();
   for (unsigned seed : {1u, 2u, 3u}) {

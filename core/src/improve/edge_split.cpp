@@ -94,7 +94,7 @@ class FaceSplit {
 }  // namespace
 
 bool split_edge(WorkMesh& w, TetMesh& mesh, const std::vector<Point3>& facet_normals,
-                std::vector<VertexConstraint>& constraints, Index u, Index v, bool boundary,
+                std::vector<VertexConstraint>& constraints, Index u, Index v, bool boundary, double threshold,
                 const std::function<void(Index)>& smooth, bool* on_boundary) {
   if (w.is_protected_edge(u, v)) return false;
   std::vector<Index> on_edge = faces_on_edge(w, mesh, u, v);
@@ -116,9 +116,12 @@ bool split_edge(WorkMesh& w, TetMesh& mesh, const std::vector<Point3>& facet_nor
   if (around.size() < (on_edge.empty() ? 3u : 1u)) return false;
   std::vector<Index> ring;
   double old_min = std::numeric_limits<double>::infinity(), old_max_rho = 0;
+  std::size_t old_below = 0;
   for (Index t : around) {
     if (on_edge.empty() && w.region[t] != w.region[around[0]]) return false;
-    old_min = std::min(old_min, w.quality(t));
+    const double q = w.quality(t);
+    old_min = std::min(old_min, q);
+    old_below += q < threshold;
     if (w.rho_bound > 0) old_max_rho = std::max(old_max_rho, w.radius_edge(t));
     for (Index x : w.tets[t])
       if (x != u && x != v) ring.push_back(x);
@@ -161,15 +164,47 @@ bool split_edge(WorkMesh& w, TetMesh& mesh, const std::vector<Point3>& facet_nor
     w.add_tet(a, w.region[t]);
     w.add_tet(b, w.region[t]);
   }
-  bool valid = true;
-  for (std::size_t t = first_new; t < w.tets.size(); ++t) valid = valid && w.quality(Index(t)) >= 0;
-  if (valid) smooth(m);
-  double new_min = std::numeric_limits<double>::infinity();
-  for (std::size_t t = first_new; t < w.tets.size(); ++t) {
-    new_min = std::min(new_min, w.quality(Index(t)));
-    valid = valid && w.rho_allowed(w.tets[t], old_max_rho);
+  // The split with m starting at `start`, then smoothed: whether it is kept (positive tets, the radius-edge guard,
+  // a better smallest angle and, with `no_more_below`, no more tets below `threshold` than around the edge before:
+  // the smoother's rule). *bad_start: a new tet was not positive, or failed the guard, at `start`.
+  const auto attempt = [&](const Point3& start, bool no_more_below, bool* bad_start) {
+    (*w.points)[m] = start;
+    *bad_start = false;
+    for (std::size_t t = first_new; t < w.tets.size(); ++t) {
+      if (!(w.quality(Index(t)) >= 0)) return *bad_start = true, false;
+      *bad_start = *bad_start || !w.rho_allowed(w.tets[t], old_max_rho);
+    }
+    smooth(m);
+    double new_min = std::numeric_limits<double>::infinity();
+    std::size_t new_below = 0;
+    for (std::size_t t = first_new; t < w.tets.size(); ++t) {
+      const double q = w.quality(Index(t));
+      new_min = std::min(new_min, q);
+      new_below += q < threshold;
+      if (!w.rho_allowed(w.tets[t], old_max_rho)) return false;
+    }
+    return new_min > old_min + 1e-9 && (!no_more_below || new_below <= old_below);
+  };
+  const Point3 mid = (*w.points)[m];
+  bool bad_start = false;
+  bool kept = attempt(mid, false, &bad_start);
+  if (!kept && bad_start && on_edge.empty()) {
+    // The midpoint of an edge of a flat tetrahedron makes two flat halves, which can be inverted by rounding or too
+    // flat for the radius-edge guard to let the smoother take the first small steps out of them (fandisk.off: a
+    // 0.108-degree tet whose four corners are input vertices, at a noise fold beside a wall, the one tet below 15
+    // degrees the pass left). A free vertex may start anywhere inside the kernel of the edge's star: it starts
+    // again from points towards the centroid of the ring.
+    Point3 centroid{0, 0, 0};
+    for (Index x : ring)
+      for (int k = 0; k < 3; ++k) centroid[k] += w.point(x)[k] / double(ring.size());
+    for (const double t : {0.5, 1.0}) {
+      if (kept) break;
+      kept = attempt({mid[0] + t * (centroid[0] - mid[0]), mid[1] + t * (centroid[1] - mid[1]),
+                      mid[2] + t * (centroid[2] - mid[2])},
+                     true, &bad_start);
+    }
   }
-  if (valid && new_min > old_min + 1e-9) {
+  if (kept) {
     *on_boundary = !on_edge.empty();
     return true;
   }

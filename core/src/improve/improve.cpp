@@ -590,7 +590,7 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
         for (int b = a + 1; b < 4; ++b)
           if (bool boundary = false;
               w.alive[t] && split_edge(w, mesh, facet_normals, constraints, tv[a], tv[b], options.boundary_insertion,
-                                       [&](Index m) { smoother.smooth(m, constraints[m], unsigned(round)); },
+                                       threshold, [&](Index m) { smoother.smooth(m, constraints[m], unsigned(round)); },
                                        &boundary)) {
             ++changes;
             ++res.num_insertions;

@@ -171,10 +171,12 @@ int flip_to_remove(WorkMesh& w, Index t, int max_ring);
 
 // Edge split (edge_split.cpp): splits edge uv at its midpoint, in the volume or (with `boundary`) inside one planar
 // input facet, calls `smooth` on the new vertex, and keeps the split only when the smallest angle around the edge
-// grows; else undoes it completely. `constraints` gets the new vertex's freedom; `facet_normals` are the PLC facets'
-// unit normals. Returns whether it kept the split, and in *on_boundary whether the split was inside a facet.
+// grows; else undoes it completely. A volume edge whose split fails so is tried again with the new vertex starting
+// towards the centroid of the edge's ring, kept only if it also leaves no more tets below `threshold` (degrees).
+// `constraints` gets the new vertex's freedom; `facet_normals` are the PLC facets' unit normals. Returns whether it
+// kept the split, and in *on_boundary whether the split was inside a facet.
 bool split_edge(WorkMesh& w, TetMesh& mesh, const std::vector<Point3>& facet_normals,
-                std::vector<VertexConstraint>& constraints, Index u, Index v, bool boundary,
+                std::vector<VertexConstraint>& constraints, Index u, Index v, bool boundary, double threshold,
                 const std::function<void(Index)>& smooth, bool* on_boundary);
 
 // Cap removal (cap_removal.cpp): removes tet `t` when it is a cap on one CAD face (two hull faces with one
