@@ -87,9 +87,8 @@ struct MeshOptions {
     // (not with project_to_boundary), an angle between two edges (two segments, or a segment and a facet's corner edge)
     // then counts as an acute input angle only below 30 degrees; dihedral angles and elevations keep 90. Conformity
     // stays exact and Rule 3's bound holds as before; triangulated surfaces need far fewer vertices (no pumping:
-    // fandisk.off 7424 instead of 28003, anchor.off 5360 instead of 18411; with pumping fandisk.off has 8598 vertices
-    // and one tetrahedron below 10 degrees, a 0.108-degree cap at an 89.9-degree step, where the paper's rule has none
-    // below 15). Where it would leave an element missing, or
+    // fandisk.off 7424 instead of 28003, anchor.off 5360 instead of 18411; with pumping fandisk.off has 8599 vertices
+    // and none below 15 degrees, as under the paper's rule). Where it would leave an element missing, or
     // (with no min_split_length) its conflict zones grow large, the input is meshed again with the paper's rule
     // (MeshStats::encroaching_fell_back; bottle.brep's tessellation).
     Steiner,
