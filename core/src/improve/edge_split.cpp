@@ -1,7 +1,9 @@
 // Edge splits of the improvement pass (improve.h; beyond the paper, after QUALMESH), Klingner & Shewchuk's vertex
 // insertion in its simplest form: where flips and smoothing leave a tetrahedron below the sliver angle, one of its
 // edges is split at its midpoint and the new vertex smoothed within its freedom. The split is kept only when the
-// smallest angle of the tets around the edge grows, else undone completely (the point is removed again).
+// smallest angle of the tets around the edge grows, else undone completely (the point is removed again). A free
+// vertex whose midpoint start is itself bad (a flat half inverted, or beyond the radius-edge guard) starts again
+// towards the centroid of the edge's ring.
 //   - An interior edge of one region (no constraint face holds it, its ring closes, not protected): the new vertex is
 //     free (Klingner & Shewchuk's vertex insertion).
 //   - With `boundary` (ImproveOptions::boundary_insertion), also an edge inside one planar input facet: exactly two
@@ -171,7 +173,10 @@ bool split_edge(WorkMesh& w, TetMesh& mesh, const std::vector<Point3>& facet_nor
     (*w.points)[m] = start;
     *bad_start = false;
     for (std::size_t t = first_new; t < w.tets.size(); ++t) {
-      if (!(w.quality(Index(t)) >= 0)) return *bad_start = true, false;
+      if (!(w.quality(Index(t)) >= 0)) {
+        *bad_start = true;
+        return false;
+      }
       *bad_start = *bad_start || !w.rho_allowed(w.tets[t], old_max_rho);
     }
     smooth(m);

@@ -171,8 +171,9 @@ int flip_to_remove(WorkMesh& w, Index t, int max_ring);
 
 // Edge split (edge_split.cpp): splits edge uv at its midpoint, in the volume or (with `boundary`) inside one planar
 // input facet, calls `smooth` on the new vertex, and keeps the split only when the smallest angle around the edge
-// grows; else undoes it completely. A volume edge whose split fails so is tried again with the new vertex starting
-// towards the centroid of the edge's ring, kept only if it also leaves no more tets below `threshold` (degrees).
+// grows; else undoes it completely. A volume edge whose split fails from a bad midpoint start (a new tet not positive,
+// or beyond the radius-edge guard) is tried again with the new vertex starting towards the centroid of the edge's
+// ring, kept only if it also leaves no more tets below `threshold` (degrees).
 // `constraints` gets the new vertex's freedom; `facet_normals` are the PLC facets' unit normals. Returns whether it
 // kept the split, and in *on_boundary whether the split was inside a facet.
 bool split_edge(WorkMesh& w, TetMesh& mesh, const std::vector<Point3>& facet_normals,
