@@ -73,6 +73,8 @@ struct CellInfo {
   // cell_min_dihedral_deg). A cell's vertices never move (a weight change replaces the cells around the vertex), so
   // it stays valid as long as the cell exists.
   double min_dihedral_deg = -1;
+  // Its radius-edge ratio, once measured (negative: not yet; refine_state.h cell_radius_edge), valid as long.
+  double radius_edge = -1;
 };
 
 using Vb3 = WithTimeStamp<

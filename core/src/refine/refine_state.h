@@ -189,6 +189,16 @@ inline double cell_min_dihedral_deg(const MeshState& s, Ch3 c) {
   return angle;
 }
 
+// Radius-edge ratio of finite cell c, measured once per cell (CellInfo::radius_edge): sliver insertion reads the cells
+// of overlapping conflict zones, candidate after candidate and sliver after sliver.
+inline double cell_radius_edge(const MeshState& s, Ch3 c) {
+  double& rho = c->info().radius_edge;
+  if (rho < 0)
+    rho = tet_radius_edge(s.point(c->vertex(0)->info()), s.point(c->vertex(1)->info()), s.point(c->vertex(2)->info()),
+                          s.point(c->vertex(3)->info()));
+  return rho;
+}
+
 // Vertex v in the 2D triangulation of `facet` (null when v is not on it). A facet vertex keeps its handle in its
 // record; the others (on segments, input vertices: on several facets) are in the facet's map.
 inline Vh2 facet_vertex_handle(const MeshState& s, Index facet, Index v) {

@@ -43,7 +43,6 @@
 #include <map>
 #include <string>
 #include <tuple>
-#include <unordered_map>
 
 #include "qualmesh/quality.h"
 #include "refine/pump_star.h"
@@ -155,10 +154,6 @@ bool conflict_zone(const MeshState& s, Ch3 start, const KWeightedPoint3& wp, int
   return inside;
 }
 
-// The smallest dihedral angle and radius-edge ratio of existing cells, measured once per sliver: the conflict
-// zones of a sliver's candidates overlap, and nothing changes while they are evaluated.
-using CellMemo = std::unordered_map<Ch3, std::pair<double, double>, CellHash>;
-
 // evaluate()'s working data, kept across the candidates of a sliver (the marks across the whole pass), and the cells
 // the candidates read.
 struct Scratch {
@@ -188,7 +183,7 @@ bool link_has_edge(const std::vector<Facet3>& boundary, Index a, Index b) {
 // or its new cells already leave fewer removed) is refused as FewRemoved as soon as that is known: the round would
 // not insert it, so the mesh is the same as with every check run (only the -v log's refusal counts differ).
 PointRefusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t min_removed, Candidate& out,
-                      CellMemo& memo, Scratch& scratch) {
+                      Scratch& scratch) {
   const KWeightedPoint3 wp(p, 0);
   const int region = sliver->info().region;
   // Destroys the sliver; then the zone is found from it, in one region inside the domain.
@@ -201,15 +196,11 @@ PointRefusal evaluate(MeshState& s, Ch3 sliver, const KPoint3& p, std::size_t mi
   if (out.boundary.empty()) return PointRefusal::NotInConflict;
   StarQuality destroyed;
   double destroyed_max_radius_edge = 0;
+  // Existing cells are measured once in their lifetime (CellInfo's caches): the zones of a sliver's candidates
+  // overlap, and so do those of neighbouring slivers.
   for (const Ch3& c : out.cells) {
-    auto [it, fresh] = memo.try_emplace(c);
-    if (fresh) {
-      const TetQuality tq = tet_quality(s.point(c->vertex(0)->info()), s.point(c->vertex(1)->info()),
-                                        s.point(c->vertex(2)->info()), s.point(c->vertex(3)->info()));
-      it->second = {tq.min_dihedral_deg, tq.radius_edge};
-    }
-    add_cell(s, it->second.first, &destroyed);
-    destroyed_max_radius_edge = std::max(destroyed_max_radius_edge, it->second.second);
+    add_cell(s, cell_min_dihedral_deg(s, c), &destroyed);
+    destroyed_max_radius_edge = std::max(destroyed_max_radius_edge, cell_radius_edge(s, c));
   }
   if (destroyed.num_bad < min_removed) return PointRefusal::FewRemoved;
   // No subfacet inside the zone.
@@ -364,14 +355,13 @@ PointRefusal insert_at_sliver(MeshState& s, Ch3 c, std::size_t min_removed, std:
   Candidate best, trial;
   bool found = false;
   PointRefusal furthest = PointRefusal::NotInConflict;
-  CellMemo memo;
   scratch.read.assign(1, c);
   for (const KPoint3& p : candidate_points(c)) {
     // Once a candidate is accepted, one that removes fewer cells cannot be better: evaluate() drops it as FewRemoved
     // as soon as that is known. The choice is the same; only `furthest` could differ, and it is read when none is
     // accepted, when the request is min_removed.
     const std::size_t need = found ? std::max(min_removed, best.num_removed) : min_removed;
-    const PointRefusal r = evaluate(s, c, p, need, trial, memo, scratch);
+    const PointRefusal r = evaluate(s, c, p, need, trial, scratch);
     if (r != PointRefusal::None) {
       furthest = std::max(furthest, r);
       continue;
