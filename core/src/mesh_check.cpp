@@ -427,9 +427,9 @@ CheckReport check_mesh(const TetMesh& mesh, const Plc* reference, const CheckOpt
       coverage.covered_area = covered[f];
       // A facet with no cell of the domain on either side is to be covered by nothing.
       const double to_cover = coverage.bounds_domain ? coverage.area : 0;
-      coverage.relative_error = to_cover > 0 ? std::fabs(covered[f] - to_cover) / std::max(to_cover, area_floor)
-                                : coverage.area > 0 ? covered[f] / std::max(coverage.area, area_floor)
-                                                    : (covered[f] > 0 ? inf : 0);
+      coverage.relative_error = coverage.area > 0
+                                    ? std::fabs(covered[f] - to_cover) / std::max(coverage.area, area_floor)
+                                    : (covered[f] > 0 ? inf : 0);
       report.facet_area += to_cover;
       report.max_facet_area_relative_error = std::max(report.max_facet_area_relative_error, coverage.relative_error);
       // A facet flat only to d has its area defined to about 2 d times its perimeter (the tilt of its loops).

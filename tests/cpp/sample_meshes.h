@@ -1,12 +1,13 @@
 // Small hand-built meshes for the reader and writer tests: Kuhn's 6-tetrahedron cube with two regions and its
 // hull triangles (sample_mesh), and the same made second order with mid-nodes at the edge midpoints, plus the
 // tetrahedron edges on the cube's 12 edges as marked edges (sample_mesh_quadratic). For the checker and mesher
-// tests: the unit cube as a PLC (unit_cube_plc) and Kuhn's split of it (kuhn_unit_cube).
+// tests: the unit cube as a PLC (unit_cube_plc) and Kuhn's split of it (kuhn_unit_cube); boundary_faces of a mesh.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <map>
+#include <set>
 #include <utility>
 
 #include "qualmesh/plc.h"
@@ -121,6 +122,21 @@ inline TetMesh sample_mesh_quadratic(bool with_edges = true) {
   for (const auto& f : mesh.faces) mesh.face_mid.push_back({mid_of(f[0], f[1]), mid_of(f[1], f[2]), mid_of(f[2], f[0])});
   for (const auto& e : mesh.edges) mesh.edge_mid.push_back(mid_of(e[0], e[1]));
   return mesh;
+}
+
+// Boundary faces of a tetrahedral mesh: the faces of exactly one tetrahedron (sorted ids).
+inline std::set<std::array<Index, 3>> boundary_faces(const TetMesh& m) {
+  std::map<std::array<Index, 3>, int> count;
+  for (const auto& t : m.tets)
+    for (int i = 0; i < 4; ++i) {
+      std::array<Index, 3> f{t[(i + 1) & 3], t[(i + 2) & 3], t[(i + 3) & 3]};
+      std::sort(f.begin(), f.end());
+      ++count[f];
+    }
+  std::set<std::array<Index, 3>> out;
+  for (const auto& kv : count)
+    if (kv.second == 1) out.insert(kv.first);
+  return out;
 }
 
 }  // namespace qualmesh

@@ -29,6 +29,7 @@
 #include "qualmesh/mesher.h"
 #include "qualmesh/plc_io.h"
 #include "qualmesh/quality.h"
+#include "sample_meshes.h"
 #include "test_support.h"
 
 namespace {
@@ -348,19 +349,13 @@ TEST(Improve, FlatTetAtANoiseFoldGetsAVertexStartedInsideItsEdgesStar) {
     mesh.tet_region.push_back(1);
   }
   // The boundary: the faces of one tet only, each oriented away from its tet (its own facet).
-  std::map<std::array<Index, 3>, int> count;
-  for (const auto& t : mesh.tets)
-    for (int k = 0; k < 4; ++k) {
-      std::array<Index, 3> f{t[(k + 1) & 3], t[(k + 2) & 3], t[(k + 3) & 3]};
-      std::sort(f.begin(), f.end());
-      ++count[f];
-    }
+  const auto hull = qualmesh::boundary_faces(mesh);
   for (const auto& t : mesh.tets)
     for (int k = 0; k < 4; ++k) {
       std::array<Index, 3> f{t[(k + 1) & 3], t[(k + 2) & 3], t[(k + 3) & 3]};
       std::array<Index, 3> key = f;
       std::sort(key.begin(), key.end());
-      if (count[key] != 1) continue;
+      if (!hull.count(key)) continue;
       if (qualmesh::tet_signed_volume(p[f[0]], p[f[1]], p[f[2]], p[t[k]]) > 0) std::swap(f[1], f[2]);
       qualmesh::Facet facet;
       facet.polygons.push_back({f[0], f[1], f[2]});

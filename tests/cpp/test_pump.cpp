@@ -28,6 +28,7 @@
 #include "qualmesh/mesher.h"
 #include "qualmesh/plc_io.h"
 #include "qualmesh/quality.h"
+#include "sample_meshes.h"
 #include "test_support.h"
 
 namespace {
@@ -35,6 +36,7 @@ namespace {
 using qualmesh::Index;
 using qualmesh::Plc;
 using qualmesh::Point3;
+using qualmesh::boundary_faces;
 using K = CGAL::Epick;
 
 struct PlcBuilder {
@@ -257,22 +259,8 @@ TEST(Pump, SizeFieldBoxPumpsSlivers) {
   EXPECT_LT(r.stats.num_slivers_after_pumping, r.stats.num_slivers_before_pumping);
 }
 
-// Boundary faces: faces of exactly one tetrahedron (sorted ids).
 constexpr Index kNoOpposite = Index(-1);
 
-std::set<std::array<Index, 3>> boundary_faces(const qualmesh::TetMesh& m) {
-  std::map<std::array<Index, 3>, int> count;
-  for (const auto& t : m.tets)
-    for (int i = 0; i < 4; ++i) {
-      std::array<Index, 3> f{t[(i + 1) & 3], t[(i + 2) & 3], t[(i + 3) & 3]};
-      std::sort(f.begin(), f.end());
-      ++count[f];
-    }
-  std::set<std::array<Index, 3>> out;
-  for (const auto& kv : count)
-    if (kv.second == 1) out.insert(kv.first);
-  return out;
-}
 
 // Pairs of coplanar boundary faces sharing an edge across which the 2D Delaunay property fails: the opposite vertex
 // of one lies strictly inside the other's circumcircle (exact predicate). Plain refinement's subfacets are the 2D
