@@ -62,12 +62,9 @@ Face3 oriented(const WorkMesh& w, Index x, Index y, Index z, Index towards) {
   return dot(n, sub(w.point(towards), w.point(x))) > 0 ? Face3{x, y, z} : Face3{x, z, y};
 }
 
-// Boundary face f (an index into TetMesh::faces) becomes `to`: constraint list and vertex-to-face lists follow
+// Boundary face f (an index into TetMesh::faces) becomes `to`: the vertex-to-face lists follow
 // (`leaving` drops f, `joining` gets it).
 void replace_face(WorkMesh& w, TetMesh& mesh, Index f, const Face3& to, Index leaving, Index joining) {
-  const auto& from = mesh.faces[f];
-  erase_sorted(w.constraint_faces, sorted_face(from[0], from[1], from[2]));
-  insert_sorted(w.constraint_faces, sorted_face(to[0], to[1], to[2]));
   mesh.faces[f] = to;
   auto& list = w.vertex_faces[leaving];
   list.erase(std::find(list.begin(), list.end(), f));

@@ -34,8 +34,9 @@ std::vector<Index> faces_on_edge(const WorkMesh& w, const TetMesh& mesh, Index u
 
 
 // The faces of `on_edge` (each holding edge uv) split at the new vertex m: face f keeps its index with v replaced by
-// m, and its other half (u replaced by m) is appended with f's facet and marker. Bookkeeping: WorkMesh's constraint
-// faces and vertex-to-face lists. `undo` restores everything (the halves are dropped again).
+// m, and its other half (u replaced by m) is appended with f's facet and marker. Bookkeeping: WorkMesh's
+// vertex-to-face lists (which also answer is_constraint_face). `undo` restores everything (the halves are dropped
+// again).
 class FaceSplit {
  public:
   FaceSplit(WorkMesh& w, TetMesh& mesh, std::vector<Index> on_edge, Index u, Index v, Index m)
@@ -57,21 +58,14 @@ class FaceSplit {
         if (x != u && x != v) w.vertex_faces[x].push_back(half);
       w.vertex_faces[m].push_back(f);
       w.vertex_faces[m].push_back(half);
-      erase_sorted(w.constraint_faces, sorted_face(old[0], old[1], old[2]));
-      insert_sorted(w.constraint_faces, sorted_face(a[0], a[1], a[2]));
-      insert_sorted(w.constraint_faces, sorted_face(b[0], b[1], b[2]));
     }
   }
   void undo() {
     for (std::size_t i = 0; i < on_edge_.size(); ++i) {
       const Index f = on_edge_[i], half = Index(first_ + i);
-      const auto a = mesh_.faces[f], b = mesh_.faces[half];
-      auto old = a;
+      auto old = mesh_.faces[f];
       for (Index& x : old)
         if (x == m_) x = v_;
-      erase_sorted(w_.constraint_faces, sorted_face(a[0], a[1], a[2]));
-      erase_sorted(w_.constraint_faces, sorted_face(b[0], b[1], b[2]));
-      insert_sorted(w_.constraint_faces, sorted_face(old[0], old[1], old[2]));
       replace_in(w_.vertex_faces[v_], half, f);
       for (Index x : old)
         if (x != u_ && x != v_) {

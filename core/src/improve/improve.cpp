@@ -510,6 +510,7 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
   }
   WorkMesh w;
   w.points = &mesh.points;
+  w.faces = &mesh.faces;
   w.rho_bound = options.radius_edge_bound;
   w.edge_forced = shortest_edge_forced;
   w.tets = mesh.tets;
@@ -519,8 +520,6 @@ ImproveResult improve_mesh(TetMesh& mesh, const Plc& plc, const ImproveOptions& 
   w.incident.assign(mesh.points.size(), {});
   for (Index t = 0; t < w.tets.size(); ++t)
     for (Index v : w.tets[t]) w.incident[v].push_back(t);
-  for (const auto& f : mesh.faces) w.constraint_faces.push_back(sorted_face(f[0], f[1], f[2]));
-  std::sort(w.constraint_faces.begin(), w.constraint_faces.end());
   w.vertex_faces = faces_per_vertex(mesh);
   for (const auto& e : mesh.edges) w.protected_edges.push_back(sorted_edge(e[0], e[1]));
   {
