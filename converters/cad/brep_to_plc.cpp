@@ -84,6 +84,23 @@ double distance_to_segment(const Point3& p, const Point3& a, const Point3& b) {
   return distance(p, {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])});
 }
 
+// How far a node of `face` may lie from it: its tolerance, raised to its edges' and vertices' (CadSummary).
+double node_tolerance(const TopoDS_Face& face) {
+  double tolerance = BRep_Tool::Tolerance(face);
+  for (TopExp_Explorer it(face, TopAbs_EDGE); it.More(); it.Next())
+    tolerance = std::max(tolerance, BRep_Tool::Tolerance(TopoDS::Edge(it.Current())));
+  for (TopExp_Explorer it(face, TopAbs_VERTEX); it.More(); it.Next())
+    tolerance = std::max(tolerance, BRep_Tool::Tolerance(TopoDS::Vertex(it.Current())));
+  return tolerance;
+}
+
+// OpenCASCADE's volume of one solid.
+double volume_of(const TopoDS_Shape& solid) {
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(solid, props);
+  return props.Mass();
+}
+
 // Builds the PLC of one healed shape. Members are the conversion's state; convert() runs it once.
 class PlcBuilder {
  public:
@@ -101,14 +118,7 @@ class PlcBuilder {
     summary.num_edges = edges_.Extent();
     summary.num_vertices = vertices_.Extent();
     face_triangles_.assign(faces_.Extent() + 1, {});
-    for (int f = 1; f <= faces_.Extent(); ++f) {
-      double tolerance = BRep_Tool::Tolerance(TopoDS::Face(faces_(f)));
-      for (TopExp_Explorer it(faces_(f), TopAbs_EDGE); it.More(); it.Next())
-        tolerance = std::max(tolerance, BRep_Tool::Tolerance(TopoDS::Edge(it.Current())));
-      for (TopExp_Explorer it(faces_(f), TopAbs_VERTEX); it.More(); it.Next())
-        tolerance = std::max(tolerance, BRep_Tool::Tolerance(TopoDS::Vertex(it.Current())));
-      summary.node_tolerances.push_back(tolerance);
-    }
+    for (int f = 1; f <= faces_.Extent(); ++f) summary.node_tolerances.push_back(node_tolerance(TopoDS::Face(faces_(f))));
     model_.plc.name = file_;
     if (options_.surface_mesh == CadSurfaceMesh::Sized) return convert_sized();
 
@@ -343,9 +353,7 @@ class PlcBuilder {
     summary.face_solids.assign(faces_.Extent(), {0, 0});
     face_reversed_.assign(faces_.Extent() + 1, false);
     for (int s = 1; s <= solids_.Extent(); ++s) {
-      GProp_GProps props;
-      BRepGProp::VolumeProperties(solids_(s), props);
-      summary.solid_volumes.push_back(props.Mass());
+      summary.solid_volumes.push_back(volume_of(solids_(s)));
       for (TopExp_Explorer it(solids_(s), TopAbs_FACE); it.More(); it.Next()) {
         int f = faces_.FindIndex(it.Current());
         auto& sides = summary.face_solids[f - 1];
@@ -608,6 +616,22 @@ class PlcBuilder {
 };
 
 }  // namespace
+
+std::vector<double> face_node_tolerances(const TopoDS_Shape& solids) {
+  TopTools_IndexedMapOfShape faces;
+  TopExp::MapShapes(solids, TopAbs_FACE, faces);
+  std::vector<double> out;
+  for (int f = 1; f <= faces.Extent(); ++f) out.push_back(node_tolerance(TopoDS::Face(faces(f))));
+  return out;
+}
+
+std::vector<double> solid_volumes(const TopoDS_Shape& solids) {
+  TopTools_IndexedMapOfShape map;
+  TopExp::MapShapes(solids, TopAbs_SOLID, map);
+  std::vector<double> out;
+  for (int s = 1; s <= map.Extent(); ++s) out.push_back(volume_of(map(s)));
+  return out;
+}
 
 CadModel convert_solids_to_plc(const TopoDS_Shape& solids, const CadOptions& options, const std::string& file) {
   try {

@@ -38,6 +38,12 @@ TopoDS_Shape read_healed_solids(const std::string& path, const CadOptions& optio
 // Tessellates the solids of `solids` (output of heal_into_solids) and builds the PLC and summary.
 CadModel convert_solids_to_plc(const TopoDS_Shape& solids, const CadOptions& options, const std::string& file);
 
+// CadSummary::node_tolerances and CadSummary::solid_volumes of the healed shape `solids`, by face and solid number
+// (TopExp::MapShapes order, the PLC's Face<n> and Solid<n>): what convert_solids_to_plc puts in its summary, without
+// meshing anything (measure_against_cad).
+std::vector<double> face_node_tolerances(const TopoDS_Shape& solids);
+std::vector<double> solid_volumes(const TopoDS_Shape& solids);
+
 // BRepMesh's triangles of one face, by PLC vertex ids, repaired before they become facets (tessellation_repair.cpp).
 // Two triangles on the same three vertices with opposite orientations (a flat fold) are both removed.
 void remove_mirrored_pairs(std::vector<std::array<Index, 3>>& triangles);

@@ -123,9 +123,22 @@ std::vector<double> distances_to_cad_faces(const std::string& path, const std::v
 
 CadConformity measure_against_cad(const std::string& path, const CadOptions& options, const TetMesh& mesh,
                                   const CadMeasureOptions& measure) {
-  const CadModel model = read_cad(path, options);  // the face tolerances and volumes of the model as read_cad sees it
+  if (cad::lower_extension(path) == ".scad")
+    throw InputError(ErrorCode::Unsupported, "an OpenSCAD model has no CAD faces", path);
+  // The healed shape as read_cad sees it (its face and solid numbers), read once: its volumes and node tolerances
+  // need no surface mesh (read_cad's whole conversion was most of `qualmesh check`'s time on a CAD model), and the
+  // sharp features below take it from read_healed_solids' cache.
+  std::vector<std::string> log;
+  std::vector<double> tolerances;
   CadConformity result;
-  for (double v : model.summary.solid_volumes) result.cad_volume += v;
+  try {
+    const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/false);
+    for (double v : cad::solid_volumes(solids)) result.cad_volume += v;
+    tolerances = cad::face_node_tolerances(solids);
+  } catch (const Standard_Failure& failure) {
+    throw InputError(ErrorCode::Parse, std::string("OpenCASCADE failed measuring the model: ") +
+                                           failure.GetMessageString(), path);
+  }
   if (measure.feature_angle_deg > 0) {
     const SharpCadFeatures features =
         find_sharp_cad_features(path, options, mesh.points, measure.feature_angle_deg, measure.feature_radius);
@@ -154,7 +167,6 @@ CadConformity measure_against_cad(const std::string& path, const CadOptions& opt
     faces.push_back(face);
   }
   const std::vector<double> d = distances_to_cad_faces(path, points, faces, options);
-  const auto& tolerances = model.summary.node_tolerances;
   result.num_nodes = d.size();
   for (std::size_t i = 0; i < d.size(); ++i) {
     const int f = faces[i];
