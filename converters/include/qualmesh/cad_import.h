@@ -252,7 +252,8 @@ struct CadConformity {
   std::size_t num_sharp_vertices = 0;
   std::vector<Index> feature_nodes;
 };
-// Mutates nothing; reads the model again. Throws InputError as read_cad does (and Unsupported for .scad).
+// Mutates nothing; reads and heals the model again (no surface mesh). Throws InputError as read_cad does (and
+// Unsupported for .scad).
 CadConformity measure_against_cad(const std::string& path, const CadOptions& options, const TetMesh& mesh,
                                   const CadMeasureOptions& measure = {});
 
