@@ -132,7 +132,7 @@ CadConformity measure_against_cad(const std::string& path, const CadOptions& opt
   std::vector<double> tolerances;
   CadConformity result;
   try {
-    const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, /*use_cache=*/false);
+    const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, measure.reuse_shape);
     for (double v : cad::solid_volumes(solids)) result.cad_volume += v;
     tolerances = cad::face_node_tolerances(solids);
   } catch (const Standard_Failure& failure) {

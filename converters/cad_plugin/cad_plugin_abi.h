@@ -7,7 +7,7 @@
 // name carries the interface version: change any type below (or what the plugin does with it) and bump the version,
 // so that a stale plugin fails to load by name instead of misreading memory. v2: CadOptions carries the size field
 // (size, min_size, curvature_elements, gradation, local_sizes, surface_mesh) and LoadResult the size used. measure v3:
-// CadMeasureOptions, and CadConformity's sharp features.
+// CadMeasureOptions, and CadConformity's sharp features; v4: CadMeasureOptions::reuse_shape.
 #pragma once
 
 #include <string>
@@ -25,7 +25,7 @@ inline constexpr const char* kPluginFileName = "libqualmesh_cad_plugin.so";
 inline constexpr const char* kLoadCadSymbol = "qualmesh_cad_plugin_load_cad_v2";
 // Names of the other entry points: fit_mesh_to_cad (FitMeshFn), measure_against_cad (MeasureFn).
 inline constexpr const char* kFitMeshSymbol = "qualmesh_cad_plugin_fit_mesh_v3";
-inline constexpr const char* kMeasureSymbol = "qualmesh_cad_plugin_measure_v3";
+inline constexpr const char* kMeasureSymbol = "qualmesh_cad_plugin_measure_v4";
 // project_onto_cad (ProjectFn); optional: a plugin without it leaves the mesher's boundary points on the facets.
 inline constexpr const char* kProjectSymbol = "qualmesh_cad_plugin_project_v2";
 

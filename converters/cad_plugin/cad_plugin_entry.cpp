@@ -98,11 +98,11 @@ extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_fit_m
   cad_plugin::guarded(&result->outcome, [&] { result->report = fit_mesh_to_cad(path, *options, *mesh, *fit_options); });
 }
 
-extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_measure_v3(
+extern "C" __attribute__((visibility("default"))) void qualmesh_cad_plugin_measure_v4(
     const char* path, const qualmesh::CadOptions* options, const qualmesh::TetMesh* mesh,
     const qualmesh::CadMeasureOptions* measure, qualmesh::cad_plugin::MeasureResult* result) noexcept {
   using namespace qualmesh;
-  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_measure_v3), cad_plugin::MeasureFn>);
+  static_assert(std::is_same_v<decltype(&qualmesh_cad_plugin_measure_v4), cad_plugin::MeasureFn>);
   cad_plugin::guarded(&result->outcome,
                       [&] { result->conformity = measure_against_cad(path, *options, *mesh, *measure); });
 }

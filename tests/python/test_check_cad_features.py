@@ -92,6 +92,11 @@ def test_wedge_zone_is_a_radius_around_its_sharp_edge(run_qualmesh, tmp_path, me
         mesh = tmp_path / "wedge.vtu"
         proc = run_qualmesh("mesh", model, "--size", "1.5", "-o", mesh)
         assert proc.returncode == 0, proc.stderr
+        # The summary's line: the same zone with --size as the radius.
+        summary = re.search(r"cad zones:   farther than 1\.5 from the sharp CAD features \(angles < 30 deg: 2 vertices, "
+                            r"1 edges; (\d+) of (\d+) tetrahedra inside\): min dihedral ([0-9.e+-]+) deg, (\d+)/(\d+) "
+                            r"tetrahedra below 10/15 deg", proc.stdout)
+        assert summary, proc.stdout
         distance = []
         report = check_json(run_qualmesh, mesh, model, "--protection-radius", "1")
         assert report["cad"]["distances_measured"] is True
@@ -130,6 +135,11 @@ def test_wedge_zone_is_a_radius_around_its_sharp_edge(run_qualmesh, tmp_path, me
     assert report["min_dihedral_outside_protection_deg"] == pytest.approx(min_out, abs=1e-6)
     assert report["num_tets_outside_protection_below_10"] == below10
     assert report["num_tets_outside_protection_below_15"] == below15
+    if mesher == "qualmesh":
+        inside, min_out, below10, below15 = expected_zone(points, tets, to_apex <= 1.5)
+        assert 0 < inside < len(tets)
+        assert [int(summary.group(k)) for k in (1, 2, 4, 5)] == [inside, len(tets), below10, below15]
+        assert float(summary.group(3)) == pytest.approx(min_out, rel=1e-3)  # printed with 4 digits
 
     # The default radius is the mesh's median edge length.
     default = check_json(run_qualmesh, mesh, model, *distance)

@@ -233,6 +233,9 @@ struct CadMeasureOptions {
   // feature_radius (model units) of them.
   double feature_angle_deg = 0;
   double feature_radius = 0;
+  // The shape this process read last, when it is this model (`qualmesh mesh`, right after read_cad), instead of
+  // reading and healing the file again.
+  bool reuse_shape = false;
 };
 
 // How well a mesh of a CAD model fits it (what `qualmesh check MESH --ref MODEL.step` reports): every node of every
@@ -252,8 +255,8 @@ struct CadConformity {
   std::size_t num_sharp_vertices = 0;
   std::vector<Index> feature_nodes;
 };
-// Mutates nothing; reads and heals the model again (no surface mesh). Throws InputError as read_cad does (and
-// Unsupported for .scad).
+// Mutates nothing; reads and heals the model again (no surface mesh) unless measure.reuse_shape. Throws InputError as
+// read_cad does (and Unsupported for .scad).
 CadConformity measure_against_cad(const std::string& path, const CadOptions& options, const TetMesh& mesh,
                                   const CadMeasureOptions& measure = {});
 
