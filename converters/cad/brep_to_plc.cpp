@@ -118,7 +118,8 @@ class PlcBuilder {
     summary.num_edges = edges_.Extent();
     summary.num_vertices = vertices_.Extent();
     face_triangles_.assign(faces_.Extent() + 1, {});
-    for (int f = 1; f <= faces_.Extent(); ++f) summary.node_tolerances.push_back(node_tolerance(TopoDS::Face(faces_(f))));
+    for (int f = 1; f <= faces_.Extent(); ++f)
+      summary.node_tolerances.push_back(node_tolerance(TopoDS::Face(faces_(f))));
     model_.plc.name = file_;
     if (options_.surface_mesh == CadSurfaceMesh::Sized) return convert_sized();
 

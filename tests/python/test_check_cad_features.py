@@ -93,9 +93,9 @@ def test_wedge_zone_is_a_radius_around_its_sharp_edge(run_qualmesh, tmp_path, me
         proc = run_qualmesh("mesh", model, "--size", "1.5", "-o", mesh)
         assert proc.returncode == 0, proc.stderr
         # The summary's line: the same zone with --size as the radius.
-        summary = re.search(r"cad zones:   farther than 1\.5 from the sharp CAD features \(angles < 30 deg: 2 vertices, "
-                            r"1 edges; (\d+) of (\d+) tetrahedra inside\): min dihedral ([0-9.e+-]+) deg, (\d+)/(\d+) "
-                            r"tetrahedra below 10/15 deg", proc.stdout)
+        summary = re.search(r"cad zones:   farther than 1\.5 from the sharp CAD features \(angles < 30 deg: "
+                            r"2 vertices, 1 edges; (\d+) of (\d+) tetrahedra inside\): min dihedral ([0-9.e+-]+) "
+                            r"deg, (\d+)/(\d+) tetrahedra below 10/15 deg", proc.stdout)
         assert summary, proc.stdout
         distance = []
         report = check_json(run_qualmesh, mesh, model, "--protection-radius", "1")
