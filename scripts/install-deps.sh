@@ -4,7 +4,7 @@
 set -euo pipefail
 
 # Build: compiler, CMake, CGAL (+Boost, GMP, MPFR), CLI11, GoogleTest.
-BUILD_PACKAGES="cmake g++ make libcgal-dev libboost-dev libgmp-dev libmpfr-dev libcli11-dev libgtest-dev libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev libzip-dev"
+BUILD_PACKAGES="cmake g++ make libcgal-dev libboost-dev libgmp-dev libmpfr-dev libcli11-dev libgtest-dev libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev libzip-dev libjemalloc-dev"
 # Tests: Debian's python3 with pytest, numpy and meshio (independent readers), the peer tools whose output the
 # tests and benchmarks read or compare against, and clang with its libFuzzer runtime for the readers' fuzzing smoke
 # run (scripts/fuzz.sh).
