@@ -467,10 +467,10 @@ CheckReport check_protection_zones(const TetMesh& mesh, const Plc& reference, do
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
     const auto& v = mesh.tets[t];
     for (int i = 0; i < 4; ++i) valid[t] = valid[t] && v[i] < points.size();
-    if (valid[t]) {
+    // The angle alone (the same value as tet_quality's): the circumradius, exact for a flat tet, is not needed here.
+    if (valid[t])
       tet_min_dihedral[t] =
-          tet_quality(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]).min_dihedral_deg;
-    }
+          tet_min_dihedral_deg(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]], mesh.points[v[3]]);
   }
   fill_protection(report, frame.local(reference), points, mesh.tets, valid, tet_min_dihedral, angle_deg);
   return report;
