@@ -126,15 +126,15 @@ CadConformity measure_against_cad(const std::string& path, const CadOptions& opt
   if (cad::lower_extension(path) == ".scad")
     throw InputError(ErrorCode::Unsupported, "an OpenSCAD model has no CAD faces", path);
   // The healed shape as read_cad sees it (its face and solid numbers), read once: its volumes and node tolerances
-  // need no surface mesh (read_cad's whole conversion was most of `qualmesh check`'s time on a CAD model), and the
-  // sharp features below take it from read_healed_solids' cache.
+  // (these only when distances are measured) need no surface mesh (read_cad's whole conversion was most of `qualmesh
+  // check`'s time on a CAD model), and the sharp features below take it from read_healed_solids' cache.
   std::vector<std::string> log;
   std::vector<double> tolerances;
   CadConformity result;
   try {
     const TopoDS_Shape solids = cad::read_healed_solids(path, options, log, measure.reuse_shape);
     for (double v : cad::solid_volumes(solids)) result.cad_volume += v;
-    tolerances = cad::face_node_tolerances(solids);
+    if (measure.distances) tolerances = cad::face_node_tolerances(solids);
   } catch (const Standard_Failure& failure) {
     throw InputError(ErrorCode::Parse, std::string("OpenCASCADE failed measuring the model: ") +
                                            failure.GetMessageString(), path);

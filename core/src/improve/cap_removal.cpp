@@ -36,16 +36,6 @@ std::vector<Index> tets_with_face(const WorkMesh& w, Index a, Index b, Index c) 
   return out;
 }
 
-// The index into TetMesh::faces of boundary face abc, or kNoIndex.
-Index face_index(const WorkMesh& w, const TetMesh& mesh, Index a, Index b, Index c) {
-  const Face3 key = sorted_face(a, b, c);
-  for (Index f : w.vertex_faces[a]) {
-    const auto& t = mesh.faces[f];
-    if (sorted_face(t[0], t[1], t[2]) == key) return f;
-  }
-  return kNoIndex;
-}
-
 double min_angle_deg(const Point3& a, const Point3& b, const Point3& c) {
   const Point3* p[3] = {&a, &b, &c};
   double best = 180;
@@ -90,7 +80,7 @@ bool remove_cap(WorkMesh& w, TetMesh& mesh, Index t) {
   for (Index x : v)
     if (x != c && x != d) ab[n_ab++] = x;
   const Index a = ab[0], b = ab[1];
-  const Index f_abd = face_index(w, mesh, a, b, d), f_abc = face_index(w, mesh, a, b, c);
+  const Index f_abd = w.face_index(a, b, d), f_abc = w.face_index(a, b, c);
   if (f_abc == kNoIndex || f_abd == kNoIndex) return false;
   const int marker = mesh.face_marker[f_abc];
   if (marker <= 0 || mesh.face_marker[f_abd] != marker) return false;

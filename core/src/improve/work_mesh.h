@@ -90,16 +90,18 @@ struct WorkMesh {
     const Tet4& v = tets[t];
     return oriented_min_dihedral_deg(point(v[0]), point(v[1]), point(v[2]), point(v[3]));
   }
-  // Whether abc is a constraint face: one of a's faces (vertex_faces) holds b and c. A scan of a handful of faces,
-  // kept up to date by the same edits as vertex_faces; a sorted list of all faces, kept in step by insertions and
-  // erasures, moved megabytes per boundary edge split tried (cheese.off: 11% of the run in memmove).
-  bool is_constraint_face(Index a, Index b, Index c) const {
+  // The index into TetMesh::faces of constraint face abc, or kNoIndex: the one of a's faces (vertex_faces) that holds
+  // b and c. A scan of a handful of faces, kept up to date by the same edits as vertex_faces; a sorted list of all
+  // faces, kept in step by insertions and erasures, moved megabytes per boundary edge split tried (cheese.off: 11% of
+  // the run in memmove).
+  Index face_index(Index a, Index b, Index c) const {
     for (Index f : vertex_faces[a]) {
       const auto& t = (*faces)[f];
-      if ((t[0] == b || t[1] == b || t[2] == b) && (t[0] == c || t[1] == c || t[2] == c)) return true;
+      if ((t[0] == b || t[1] == b || t[2] == b) && (t[0] == c || t[1] == c || t[2] == c)) return f;
     }
-    return false;
+    return kNoIndex;
   }
+  bool is_constraint_face(Index a, Index b, Index c) const { return face_index(a, b, c) != kNoIndex; }
   bool is_protected_edge(Index a, Index b) const {
     return std::binary_search(protected_edges.begin(), protected_edges.end(), sorted_edge(a, b));
   }
