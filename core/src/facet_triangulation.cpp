@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "cgal_types.h"
+#include "vec3.h"
 
 namespace qualmesh::detail {
 namespace {
@@ -37,11 +38,7 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_
 
 KPoint3 to_kernel(const Point3& p) { return KPoint3(p[0], p[1], p[2]); }
 
-Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Point3 cross(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using namespace vec3;
 
 std::uint64_t edge_key(Index a, Index b) {
   if (a > b) std::swap(a, b);

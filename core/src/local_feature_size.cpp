@@ -2,6 +2,7 @@
 #include "local_feature_size.h"
 
 #include "facet_triangulation.h"
+#include "vec3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,10 +17,7 @@ namespace qualmesh {
 
 namespace {
 
-using Vec = Point3;
-inline Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline double sq_norm(const Vec& a) { return dot(a, a); }
+using namespace vec3;
 
 double sq_distance_point_segment(const Point3& x, const Point3& a, const Point3& b) {
   const Vec ab = sub(b, a);

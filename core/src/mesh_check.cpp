@@ -23,6 +23,7 @@
 
 #include "mesh_check_internal.h"
 #include "qualmesh/quality.h"
+#include "vec3.h"
 
 namespace qualmesh {
 namespace {
@@ -58,11 +59,7 @@ std::string number(double value) {
   return buffer;
 }
 
-Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Point3 cross(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using namespace vec3;
 
 // Uniform grid over the facets' bounding boxes, about two cells per facet.
 class FacetGrid {

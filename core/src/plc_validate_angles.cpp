@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "plc_validate_internal.h"
+#include "vec3.h"
 
 namespace qualmesh::detail {
 namespace {
@@ -27,12 +28,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = 180.0 / kPi;
 constexpr double kSlackDeg = 1e-7;
 
-Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Point3 cross(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
+using namespace vec3;
 
 // Angle between two vectors in degrees, [0, 180]; robust near 0 and 180 (atan2 of |cross| and dot).
 double angle_deg(const Point3& a, const Point3& b) { return std::atan2(norm(cross(a, b)), dot(a, b)) * kDeg; }

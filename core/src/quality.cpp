@@ -11,6 +11,7 @@
 // meaningless and dependent on the vertex order (joint.off: a flat cell on a tilted facet measured 2.24 in one
 // order, below 2 in another, 1.59 exactly), so R^2 is then computed from exact big-float products.
 #include "qualmesh/quality.h"
+#include "vec3.h"
 
 #include <CGAL/Gmpzf.h>
 
@@ -23,14 +24,7 @@
 namespace qualmesh {
 namespace {
 
-using Vec = Point3;
-
-Vec sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
+using namespace vec3;
 
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 

@@ -15,26 +15,9 @@
 #include "improve/improve.h"
 #include "qualmesh/quality.h"
 #include "qualmesh/tet_mesh.h"
+#include "vec3.h"
 
 namespace qualmesh::detail {
-
-// Vector arithmetic of the pass (improve.cpp, edge_split.cpp).
-namespace vec3 {
-using Vec = Point3;
-inline Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline Vec add(const Vec& a, const Vec& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-inline Vec scale(const Vec& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-inline double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
-inline Vec unit(const Vec& a) {
-  const double n = norm(a);
-  return n > 0 ? scale(a, 1 / n) : Vec{0, 0, 0};
-}
-inline Vec face_normal(const Point3& a, const Point3& b, const Point3& c) { return cross(sub(b, a), sub(c, a)); }
-}  // namespace vec3
 
 using Tet4 = std::array<Index, 4>;
 using Face3 = std::array<Index, 3>;

@@ -9,16 +9,13 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include "qualmesh/error.h"
+#include "vec3.h"
 
 namespace qualmesh::detail {
 
 namespace {
 
-Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Point3 cross(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using namespace vec3;
 Point3 normalized(const Point3& a) {
   const double n = std::sqrt(dot(a, a));
   return n > 0 ? Point3{a[0] / n, a[1] / n, a[2] / n} : Point3{0, 0, 0};

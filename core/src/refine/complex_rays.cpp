@@ -15,17 +15,13 @@
 #include <cmath>
 
 #include "refine/complex.h"
+#include "vec3.h"
 
 namespace qualmesh::detail {
 
 namespace {
 
-Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Point3 cross(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
+using namespace vec3;
 
 constexpr double kMargin = 1e-9;  // relative: |sin| of the angle between a direction and an edge
 
