@@ -11,7 +11,6 @@
 // meaningless and dependent on the vertex order (joint.off: a flat cell on a tilted facet measured 2.24 in one
 // order, below 2 in another, 1.59 exactly), so R^2 is then computed from exact big-float products.
 #include "qualmesh/quality.h"
-#include "vec3.h"
 
 #include <CGAL/Gmpzf.h>
 
@@ -20,6 +19,8 @@
 #include <limits>
 #include <tuple>
 #include <utility>
+
+#include "vec3.h"
 
 namespace qualmesh {
 namespace {
