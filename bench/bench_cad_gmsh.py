@@ -34,7 +34,7 @@ CAD = ROOT.parent / "shared" / "data" / "cad"
 def timed(cmd, cwd, timeout):
     start = time.perf_counter()
     try:
-        proc = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+        proc = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, errors="replace", timeout=timeout)
     except subprocess.TimeoutExpired:
         proc = subprocess.CompletedProcess(cmd, 124, "", f"timed out after {timeout} s")
     return time.perf_counter() - start, proc

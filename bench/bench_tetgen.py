@@ -64,7 +64,8 @@ def timed(cmd, cwd):
         wrapped = ([str(gnu_time), "-f", "%M", "-o", rss_file.name] + cmd) if gnu_time.exists() else cmd
         start = time.perf_counter()
         try:
-            proc = subprocess.run(wrapped, cwd=cwd, capture_output=True, text=True, timeout=TIMEOUT_S)
+            proc = subprocess.run(wrapped, cwd=cwd, capture_output=True, text=True, errors="replace",
+                                  timeout=TIMEOUT_S)
         except subprocess.TimeoutExpired:
             return time.perf_counter() - start, subprocess.CompletedProcess(cmd, 124, "", f"timed out after "
                                                                                          f"{TIMEOUT_S} s"), None
