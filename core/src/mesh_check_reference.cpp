@@ -12,6 +12,7 @@
 #include <set>
 
 #include "mesh_check_internal.h"
+#include "vec3.h"
 
 namespace qualmesh::check {
 namespace {
@@ -52,8 +53,6 @@ Point3 newell_normal(const Plc& plc, const std::vector<Index>& loop) {
   return n;
 }
 
-double length(const Point3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
 }  // namespace
 
 bool FacetGeometry::contains(const Point3& p) const {
@@ -92,9 +91,9 @@ FacetGeometry make_facet_geometry(const Plc& plc, const Facet& facet) {
   Point3 best{0, 0, 0};
   for (const auto& loop : g.loops) {
     const Point3 n = newell_normal(plc, loop);
-    if (length(n) > length(best)) best = n;
+    if (vec3::norm(n) > vec3::norm(best)) best = n;
   }
-  const double norm = length(best);
+  const double norm = vec3::norm(best);
   if (!(norm > 0)) {
     g.degenerate = true;
     return g;
@@ -192,7 +191,7 @@ double solid_angle(const Point3& p, const Point3& pa, const Point3& pb, const Po
     b[k] = pb[k] - p[k];
     c[k] = pc[k] - p[k];
   }
-  const double la = length(a), lb = length(b), lc = length(c);
+  const double la = vec3::norm(a), lb = vec3::norm(b), lc = vec3::norm(c);
   const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
                      a[2] * (b[0] * c[1] - b[1] * c[0]);
   const double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -201,10 +200,6 @@ double solid_angle(const Point3& p, const Point3& pa, const Point3& pb, const Po
   return 2 * std::atan2(det, la * lb * lc + ab * lc + ac * lb + bc * la);
 }
 
-Point3 cross3(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot3(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 struct UnionFind {
   std::vector<std::size_t> parent;
@@ -254,29 +249,29 @@ ReferenceVolume compute_cell_volume(const Plc& plc, const std::vector<FacetGeome
     const Point3& u = plc.vertices[edge.first];
     const Point3& v = plc.vertices[edge.second];
     Point3 axis{v[0] - u[0], v[1] - u[1], v[2] - u[2]};
-    const double axis_length = length(axis);
+    const double axis_length = vec3::norm(axis);
     for (double& c : axis) c /= axis_length;
     std::vector<std::pair<double, std::size_t>> order;  // angle, use
     std::vector<Point3> inward(uses.size());
     for (std::size_t i = 0; i < uses.size(); ++i) {
       const Point3& a = plc.vertices[uses[i].from];
       const Point3& b = plc.vertices[uses[i].to];
-      inward[i] = cross3(facets[uses[i].facet].normal, {b[0] - a[0], b[1] - a[1], b[2] - a[2]});
+      inward[i] = vec3::cross(facets[uses[i].facet].normal, {b[0] - a[0], b[1] - a[1], b[2] - a[2]});
     }
     const Point3 x0 = inward[0];
-    const Point3 y0 = cross3(axis, x0);
+    const Point3 y0 = vec3::cross(axis, x0);
     for (std::size_t i = 0; i < uses.size(); ++i) {
-      order.push_back({std::atan2(dot3(inward[i], y0), dot3(inward[i], x0)), i});
+      order.push_back({std::atan2(vec3::dot(inward[i], y0), vec3::dot(inward[i], x0)), i});
     }
     std::sort(order.begin(), order.end());
     for (std::size_t k = 0; k < order.size(); ++k) {
       const std::size_t i = order[k].second, j = order[(k + 1) % order.size()].second;
       // The wedge from facet i to facet j (counterclockwise around the axis).
-      const Point3 ahead = cross3(axis, inward[i]);
-      const Point3 behind = cross3(inward[j], axis);
+      const Point3 ahead = vec3::cross(axis, inward[i]);
+      const Point3 behind = vec3::cross(inward[j], axis);
       const std::size_t fi = uses[i].facet, fj = uses[j].facet;
-      const std::size_t side_i = 2 * fi + (dot3(facets[fi].normal, ahead) > 0 ? 0 : 1);
-      const std::size_t side_j = 2 * fj + (dot3(facets[fj].normal, behind) > 0 ? 0 : 1);
+      const std::size_t side_i = 2 * fi + (vec3::dot(facets[fi].normal, ahead) > 0 ? 0 : 1);
+      const std::size_t side_j = 2 * fj + (vec3::dot(facets[fj].normal, behind) > 0 ? 0 : 1);
       sides.unite(side_i, side_j);
     }
   }
@@ -465,7 +460,7 @@ ReferenceVolume compute_reference_volume(const Plc& plc, const std::vector<Facet
               b[k] = plc.vertices[loop[i]][k] - p[k];
               c[k] = plc.vertices[loop[i + 1]][k] - p[k];
             }
-            const double la = length(a), lb = length(b), lc = length(c);
+            const double la = vec3::norm(a), lb = vec3::norm(b), lc = vec3::norm(c);
             const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
                                a[2] * (b[0] * c[1] - b[1] * c[0]);
             const double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];

@@ -18,6 +18,8 @@ inline Vec cross(const Vec& a, const Vec& b) {
 }
 inline double sq_norm(const Vec& a) { return dot(a, a); }
 inline double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
+inline double sq_dist(const Point3& a, const Point3& b) { return sq_norm(sub(a, b)); }
+inline double dist(const Point3& a, const Point3& b) { return norm(sub(a, b)); }
 // a / |a| as a * (1 / |a|); the zero vector for a zero vector.
 inline Vec unit(const Vec& a) {
   const double n = norm(a);

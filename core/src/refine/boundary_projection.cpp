@@ -11,20 +11,17 @@
 #include <cmath>
 
 #include "refine/refine_state.h"
+#include "vec3.h"
 
 namespace qualmesh::detail {
 
 namespace {
 
-double distance(const Point3& a, const Point3& b) {
-  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-}
-
 // Applies the projection when it moves p by at most max_move.
 bool project_within(const MeshState& s, int edge, int face, double max_move, Point3& p) {
   Point3 q = p;
   if (!s.options.project_to_boundary(edge, face, q)) return false;
-  if (!(distance(p, q) <= max_move)) return false;
+  if (!(vec3::dist(p, q) <= max_move)) return false;
   p = q;
   return true;
 }

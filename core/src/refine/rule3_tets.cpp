@@ -26,14 +26,13 @@
 #include <unordered_set>
 
 #include "refine/refine_state.h"
+#include "vec3.h"
 
 namespace qualmesh::detail {
 
 namespace {
 
-double sq_dist(const Point3& a, const Point3& b) {
-  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
-}
+using vec3::sq_dist;
 
 // The facet holding all four vertices of cell c (a face of c is its subfacet and the opposite vertex lies on it
 // too), or kNoIndex: a flat tetrahedron of near-cocircular facet points that rounding made slightly non-coplanar.

@@ -15,14 +15,13 @@
 #include <limits>
 
 #include "refine/refine_state.h"
+#include "vec3.h"
 
 namespace qualmesh::detail {
 
 namespace {
 
-double sq_dist(const Point3& a, const Point3& b) {
-  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
-}
+using vec3::sq_dist;
 
 // Whether w lies on an input segment that meets, at an acute angle, the segment of one of abc's vertices.
 bool on_segment_acute_to_subfacet(const MeshState& s, Index w, const std::array<Index, 3>& abc) {
